@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Rigid transforms: the pose of a body as a rotation followed by a translation.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace hcd
+{
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+/// A rigid transform x -> rotation * x + translation. Names of variables that hold one say which
+/// frames it maps between, e.g. `worldFromRobot` maps robot-frame points to world coordinates.
+struct RigidTransform
+{
+    Mat3 rotation = Mat3::Identity();
+    Vec3 translation = Vec3::Zero();
+
+    static RigidTransform identity() { return {}; }
+
+    /// SE3 pose as OMPL.app builds it: translation (x, y, z) times the unit quaternion (w, x, y, z).
+    /// The quaternion is normalised here so that slightly denormalised input stays rigid.
+    static RigidTransform fromTranslationQuaternion(const Vec3 &t, double qw, double qx, double qy, double qz);
+
+    /// SE2 pose as OMPL.app builds it: translation (x, y, 0) times a rotation by yaw about +z.
+    static RigidTransform fromPlanarPose(double x, double y, double yaw);
+
+    /// Rotation by `angle` radians about `axis` (need not be unit length; a zero axis means no rotation).
+    static RigidTransform fromAxisAngle(const Vec3 &t, const Vec3 &axis, double angle);
+
+    /// Applies the transform to a point. Every checker maps robot vertices through this one
+    /// function, so that all of them see bit-identical world coordinates.
+    Vec3 apply(const Vec3 &p) const { return rotation * p + translation; }
+
+    RigidTransform operator*(const RigidTransform &other) const
+    {
+        return {rotation * other.rotation, rotation * other.translation + translation};
+    }
+
+    RigidTransform inverse() const
+    {
+        Mat3 rt = rotation.transpose();
+        return {rt, -(rt * translation)};
+    }
+
+    /// True when every entry is a finite number (NaN or infinite poses are rejected by callers).
+    bool isFinite() const { return rotation.allFinite() && translation.allFinite(); }
+};
+}  // namespace hcd

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// An indexed triangle mesh: the geometry every hierarchy and checker is built from.
+#pragma once
+
+#include "hybridcd/geometry/rigid_transform.h"
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace hcd
+{
+/// Axis-aligned box [min, max]; empty when min > max.
+struct BoundingBox
+{
+    Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 max = Vec3::Constant(-std::numeric_limits<double>::infinity());
+
+    void extend(const Vec3 &p)
+    {
+        min = min.cwiseMin(p);
+        max = max.cwiseMax(p);
+    }
+    bool empty() const { return (min.array() > max.array()).any(); }
+};
+
+/// Triangles over a shared vertex array, in the mesh's own frame. Triangles are never degenerate
+/// when the mesh comes from the loader (those are dropped and counted there).
+struct TriangleMesh
+{
+    using Triangle = std::array<std::uint32_t, 3>;
+
+    std::vector<Vec3> vertices;
+    std::vector<Triangle> triangles;
+
+    std::size_t triangleCount() const { return triangles.size(); }
+    bool empty() const { return triangles.empty(); }
+    const Vec3 &corner(std::size_t triangle, int k) const { return vertices[triangles[triangle][k]]; }
+
+    BoundingBox bounds() const;
+
+    /// Largest distance of a vertex from the origin of the mesh frame (0 for an empty mesh).
+    double radiusAboutOrigin() const;
+
+    /// Bytes held by the vertex and triangle arrays.
+    std::size_t memoryBytes() const;
+};
+
+/// Edge-manifold closedness: after removing triangles that repeat another one with the same or
+/// reversed vertex order (SketchUp exports every face twice), every undirected edge is shared by an
+/// even, non-zero number of triangles. Orientation is not required to be consistent.
+bool isClosed(const TriangleMesh &mesh);
+
+/// Merges vertices with identical coordinates and drops triangles that become degenerate
+/// (collinear or repeated corners, decided exactly). Returns the number of triangles dropped.
+std::size_t weldAndDropDegenerate(TriangleMesh &mesh);
+}  // namespace hcd

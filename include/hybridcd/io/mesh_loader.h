@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Loads triangle meshes with assimp, placing them exactly as OMPL.app does.
+//
+// OMPL.app's conventions, reproduced bit for bit so that its .cfg and .path files mean the same
+// poses here: the scene is post-processed with GenNormals, Triangulate, JoinIdenticalVertices,
+// SortByPType and OptimizeGraph; every node's vertices are mapped by the accumulated single-precision
+// transform parent x node; only faces with exactly three indices are triangles (SketchUp exports
+// edges as line primitives). A robot is shifted by minus the single-precision mean of all its
+// instanced vertices, with the shift's z zeroed for planar problems; an environment is not moved.
+#pragma once
+
+#include "hybridcd/geometry/triangle_mesh.h"
+
+#include <string>
+
+namespace hcd
+{
+enum class MeshRole
+{
+    Environment,  ///< kept in its file's coordinates
+    Robot3D,      ///< centred on its vertex mean
+    RobotPlanar,  ///< centred on its vertex mean in x and y only
+};
+
+struct LoadedMesh
+{
+    TriangleMesh mesh;
+    Vec3 centeringShift = Vec3::Zero();  ///< what was subtracted from every vertex
+    std::size_t sourceTriangles = 0;      ///< three-index faces found in the file
+    std::size_t skippedNonTriangles = 0;  ///< points and lines, ignored
+    std::size_t droppedDegenerate = 0;    ///< zero-area triangles, dropped after welding
+};
+
+/// Loads any format assimp reads (COLLADA, OBJ, STL, PLY, OFF, ...). Throws InputError naming the
+/// file when it is missing, unreadable, or holds no triangle.
+LoadedMesh loadMesh(const std::string &path, MeshRole role);
+}  // namespace hcd

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// OMPL.app's .path format: one pose per line, "x y z qx qy qz qw" (SE3) or "x y theta" (SE2).
+#pragma once
+
+#include "hybridcd/geometry/rigid_transform.h"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace hcd
+{
+/// The numbers of one pose line, in file order (7 for SE3, 3 for SE2).
+struct PoseRecord
+{
+    std::vector<double> values;
+    int line = 0;
+};
+
+/// Number of leading columns a pose needs: 7 in 3D, 3 in the plane.
+inline std::size_t poseColumns(bool planar) { return planar ? 3 : 7; }
+
+/// The world-from-robot transform of a pose record (quaternion order x y z w in the file).
+RigidTransform poseToTransform(const PoseRecord &pose, bool planar);
+
+/// Reads poses; blank lines and '#' comments are skipped, columns after the pose are ignored.
+/// Throws InputError("FILE:LINE: ...") on a short line, a malformed or non-finite number.
+std::vector<PoseRecord> readPoses(const std::string &path, bool planar);
+
+/// Reads motions: two poses per line (14 numbers in 3D, 6 in the plane).
+std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar);
+
+/// Writes one pose per line with full round-trip precision.
+void writePoses(std::ostream &out, const std::vector<std::vector<double>> &poses);
+}  // namespace hcd

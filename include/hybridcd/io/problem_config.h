@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Reads OMPL.app problem files (.cfg): [problem], [benchmark] and [planner] sections.
+#pragma once
+
+#include "hybridcd/io/planner_request.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hcd
+{
+/// A start or goal as written in a .cfg. 3D: position and `theta` radians about `axis`;
+/// planar: x, y and theta (yaw).
+struct ConfigPose
+{
+    double x = 0.0, y = 0.0, z = 0.0;
+    double theta = 0.0;
+    double axisX = 1.0, axisY = 0.0, axisZ = 0.0;
+};
+
+struct BenchmarkSettings
+{
+    double timeLimit = 10.0;     ///< seconds per run
+    double memoryLimit = 1000.0; ///< MB per run
+    unsigned runCount = 10;
+};
+
+struct ProblemConfig
+{
+    std::string path;        ///< the .cfg file as given
+    std::string name;        ///< [problem] name, or the file stem
+    std::string robotMesh;   ///< resolved relative to the .cfg's folder
+    std::string worldMesh;   ///< resolved; empty when the problem has no environment
+    int robotLine = 0;       ///< lines of the robot/world keys, for error messages
+    int worldLine = 0;
+    bool planar = false;     ///< SE2 when the start has no z, as OMPL.app decides
+    std::string control;     ///< e.g. "dynamic_car" (kinodynamic problems; planned geometrically here)
+    ConfigPose start, goal;
+    std::optional<std::pair<double, double>> volumeX, volumeY, volumeZ;  ///< (min, max) when given
+    std::string objective;   ///< "length", "max min clearance", "mechanical work" or empty
+    std::optional<double> objectiveThreshold;
+    std::string sampler;     ///< valid-state sampler: uniform, gaussian, obstacle_based, max_clearance, bridge_test
+    BenchmarkSettings benchmark;
+    std::vector<PlannerRequest> planners;  ///< in file order
+};
+
+/// Parses `path`. Throws InputError("FILE:LINE: ...") for unreadable files, malformed lines, bad
+/// numbers, parameters of a planner that was never declared, and missing required keys.
+ProblemConfig readProblemConfig(const std::string &path);
+}  // namespace hcd

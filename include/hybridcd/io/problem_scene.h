@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A problem file together with its loaded meshes: everything a checker and a planner need.
+#pragma once
+
+#include "hybridcd/io/mesh_loader.h"
+#include "hybridcd/io/problem_config.h"
+#include "hybridcd/query/collision_scene.h"
+
+namespace hcd
+{
+struct LoadedProblem
+{
+    ProblemConfig config;
+    LoadedMesh robot;
+    LoadedMesh world;  ///< empty mesh when the problem names no world
+    CollisionScene scene;
+};
+
+/// Reads the .cfg and its meshes. Mesh errors are reported against the .cfg line that names the
+/// mesh: "problem.cfg:3: world mesh: path/to/mesh.dae: cannot open mesh file ...".
+LoadedProblem loadProblem(const std::string &cfgPath);
+}  // namespace hcd

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// OMPL adapter: a StateValidityChecker for SE2 and SE3 rigid bodies backed by a CollisionChecker.
+#pragma once
+
+#include "hybridcd/query/collision_checker.h"
+
+#include <ompl/base/StateValidityChecker.h>
+
+#include <atomic>
+#include <memory>
+
+namespace hcd
+{
+/// The world-from-robot transform of an SE2 or SE3 state, following OMPL.app's conventions.
+RigidTransform poseOfState(const ompl::base::State *state, bool planar);
+
+/** \brief Valid = inside the state-space bounds and collision-free (OMPL.app's definition).
+    Thread-safe: the checker is immutable and the counters are atomic, so OMPL's parallel
+    planners may call isValid concurrently. */
+class StateValidityChecker : public ompl::base::StateValidityChecker
+{
+public:
+    StateValidityChecker(const ompl::base::SpaceInformationPtr &si, std::shared_ptr<const CollisionChecker> checker,
+                         bool planar);
+
+    bool isValid(const ompl::base::State *state) const override;
+
+    /// Collision test alone, without the bounds (still counted and timed).
+    bool collisionFree(const ompl::base::State *state) const;
+
+    const CollisionChecker &checker() const { return *checker_; }
+    bool planar() const { return planar_; }
+
+    /// Number of collision queries answered so far.
+    std::uint64_t checkCount() const { return checks_.load(std::memory_order_relaxed); }
+    /// Wall time spent inside collision queries, in seconds.
+    double checkSeconds() const { return 1e-9 * double(nanoseconds_.load(std::memory_order_relaxed)); }
+    void resetCounters();
+
+private:
+    std::shared_ptr<const CollisionChecker> checker_;
+    bool planar_;
+    mutable std::atomic<std::uint64_t> checks_{0};
+    mutable std::atomic<std::uint64_t> nanoseconds_{0};
+};
+
+using StateValidityCheckerPtr = std::shared_ptr<StateValidityChecker>;
+}  // namespace hcd

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The common interface of every collision checker (brute force, OBB tree, ...).
+#pragma once
+
+#include "hybridcd/geometry/rigid_transform.h"
+#include "hybridcd/query/collision_scene.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace hcd
+{
+/// Work counters a query may fill (optional; a null pointer skips counting).
+struct QueryStats
+{
+    std::uint64_t boundingVolumeTests = 0;
+    std::uint64_t primitiveTests = 0;
+};
+
+/// One line of `inspect` output about a checker's data structures.
+struct HierarchyReport
+{
+    std::string label;  ///< e.g. "robot OBB tree"
+    std::size_t nodes = 0;
+    std::size_t depth = 0;
+    double buildSeconds = 0.0;
+    std::size_t memoryBytes = 0;
+};
+
+/// Answers "does the robot at this pose touch the environment?". Touching counts as collision.
+/// Implementations are immutable after construction and safe to query from many threads at once.
+class CollisionChecker
+{
+public:
+    virtual ~CollisionChecker() = default;
+
+    /// The name `--checker` selects this checker by.
+    virtual std::string name() const = 0;
+
+    /// True when the robot placed by `worldFromRobot` shares a point with the environment.
+    /// A non-finite pose is reported as a collision (it can never be shown to be free).
+    virtual bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const = 0;
+
+    /// Hierarchies built for this checker (empty for brute force).
+    virtual std::vector<HierarchyReport> hierarchies() const { return {}; }
+};
+}  // namespace hcd

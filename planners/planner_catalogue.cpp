@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "planners/planner_catalogue.h"
+
+#include <ompl/geometric/planners/AnytimePathShortening.h>
+#include <ompl/geometric/planners/cforest/CForest.h>
+#include <ompl/geometric/planners/est/BiEST.h>
+#include <ompl/geometric/planners/est/EST.h>
+#include <ompl/geometric/planners/est/ProjEST.h>
+#include <ompl/geometric/planners/fmt/BFMT.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/ABITstar.h>
+#include <ompl/geometric/planners/informedtrees/AITstar.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/kpiece/BKPIECE1.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/kpiece/LBKPIECE1.h>
+#include <ompl/geometric/planners/pdst/PDST.h>
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+#include <ompl/geometric/planners/prm/LazyPRMstar.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/prm/SPARS.h>
+#include <ompl/geometric/planners/prm/SPARStwo.h>
+#include <ompl/geometric/planners/quotientspace/QRRT.h>
+#include <ompl/geometric/planners/rlrt/BiRLRT.h>
+#include <ompl/geometric/planners/rlrt/RLRT.h>
+#include <ompl/geometric/planners/rrt/BiTRRT.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/LBTRRT.h>
+#include <ompl/geometric/planners/rrt/LazyLBTRRT.h>
+#include <ompl/geometric/planners/rrt/LazyRRT.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTXstatic.h>
+#include <ompl/geometric/planners/rrt/RRTsharp.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/rrt/SORRTstar.h>
+#include <ompl/geometric/planners/rrt/TRRT.h>
+#include <ompl/geometric/planners/rrt/pRRT.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
+#include <ompl/geometric/planners/sbl/pSBL.h>
+#include <ompl/geometric/planners/sst/SST.h>
+#include <ompl/geometric/planners/stride/STRIDE.h>
+
+#include <algorithm>
+#include <cctype>
+#include <functional>
+#include <map>
+#include <stdexcept>
+
+// Left out on purpose: TSRRT and VFRRT need a task space / vector field, XXL cannot plan without a
+// problem-specific decomposition, and Thunder/Lightning need an experience database.
+
+namespace hcd {
+namespace {
+
+namespace og = ompl::geometric;
+
+using Factory = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)>;
+
+template <typename T>
+Factory make() {
+    return [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
+        return std::make_shared<T>(si);
+    };
+}
+
+// A std::map keeps the names sorted, so plannerNames() needs no extra sort.
+const std::map<std::string, Factory> &catalogue() {
+    static const std::map<std::string, Factory> table = {
+        {"abitstar", make<og::ABITstar>()},
+        {"aitstar", make<og::AITstar>()},
+        {"aps", make<og::AnytimePathShortening>()},
+        {"bfmt", make<og::BFMT>()},
+        {"biest", make<og::BiEST>()},
+        {"birlrt", make<og::BiRLRT>()},
+        {"bitrrt", make<og::BiTRRT>()},
+        {"bitstar", make<og::BITstar>()},
+        {"bkpiece", make<og::BKPIECE1>()},
+        {"cforest", make<og::CForest>()},
+        {"est", make<og::EST>()},
+        {"fmt", make<og::FMT>()},
+        {"informedrrtstar", make<og::InformedRRTstar>()},
+        {"kpiece", make<og::KPIECE1>()},
+        {"lazylbtrrt", make<og::LazyLBTRRT>()},
+        {"lazyprm", make<og::LazyPRM>()},
+        {"lazyprmstar", make<og::LazyPRMstar>()},
+        {"lazyrrt", make<og::LazyRRT>()},
+        {"lbkpiece", make<og::LBKPIECE1>()},
+        {"lbtrrt", make<og::LBTRRT>()},
+        {"pdst", make<og::PDST>()},
+        {"prm", make<og::PRM>()},
+        {"prmstar", make<og::PRMstar>()},
+        {"projest", make<og::ProjEST>()},
+        {"prrt", make<og::pRRT>()},
+        {"psbl", make<og::pSBL>()},
+        // QRRT takes a sequence of quotient spaces; a single level plans directly in the given space.
+        {"qrrt",
+         [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
+             std::vector<ompl::base::SpaceInformationPtr> levels{si};
+             return std::make_shared<og::QRRT>(levels, "QRRT");
+         }},
+        {"rlrt", make<og::RLRT>()},
+        {"rrt", make<og::RRT>()},
+        {"rrtconnect", make<og::RRTConnect>()},
+        {"rrtsharp", make<og::RRTsharp>()},
+        {"rrtstar", make<og::RRTstar>()},
+        {"rrtxstatic", make<og::RRTXstatic>()},
+        {"sbl", make<og::SBL>()},
+        {"sorrtstar", make<og::SORRTstar>()},
+        {"spars", make<og::SPARS>()},
+        {"spars2", make<og::SPARStwo>()},
+        {"sst", make<og::SST>()},
+        {"stride", make<og::STRIDE>()},
+        {"trrt", make<og::TRRT>()},
+    };
+    return table;
+}
+
+std::string toLower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+// The .cfg reader may hand over "rrt " or " rrt"; stray blanks should not make a known type unknown.
+std::string trim(const std::string &s) {
+    const auto first = s.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos) return {};
+    const auto last = s.find_last_not_of(" \t\r\n");
+    return s.substr(first, last - first + 1);
+}
+
+std::string join(const std::vector<std::string> &items) {
+    std::string out;
+    for (const auto &item : items) {
+        if (!out.empty()) out += ", ";
+        out += item;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::string> plannerNames() {
+    std::vector<std::string> names;
+    names.reserve(catalogue().size());
+    for (const auto &entry : catalogue()) names.push_back(entry.first);
+    return names;
+}
+
+ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si) {
+    const std::string type = toLower(trim(request.type));
+    const auto it = catalogue().find(type);
+    if (it == catalogue().end())
+        throw std::invalid_argument("unknown planner type '" + request.type + "'; valid types: " + join(plannerNames()));
+
+    ompl::base::PlannerPtr planner = it->second(si);
+    if (!request.displayName.empty()) planner->setName(request.displayName);
+
+    for (const auto &[key, value] : request.parameters) {
+        // Check first so an unknown name gets a helpful list instead of OMPL's bare log line.
+        if (!planner->params().hasParam(key)) {
+            std::vector<std::string> known;
+            planner->params().getParamNames(known);
+            throw std::invalid_argument("planner '" + type + "' (" + planner->getName() + ") has no parameter '" + key +
+                                        "'; valid parameters: " + (known.empty() ? "(none)" : join(known)));
+        }
+        const std::string rejected = "planner '" + type + "': invalid value '" + value + "' for parameter '" + key + "'";
+        bool accepted = false;
+        try {
+            accepted = planner->params().setParam(key, value);
+        } catch (const std::exception &e) {
+            // OMPL 1.5 only turns std::invalid_argument into "false"; a malformed real
+            // ("Failed converting string to real number"), an out-of-range integer or a
+            // setter's own ompl::Exception escapes as some other exception.
+            throw std::invalid_argument(rejected + ": " + e.what());
+        }
+        if (!accepted) throw std::invalid_argument(rejected);
+    }
+    return planner;
+}
+
+}  // namespace hcd

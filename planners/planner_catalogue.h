@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+#include "hybridcd/io/planner_request.h"
+
+#include <ompl/base/Planner.h>
+#include <ompl/base/SpaceInformation.h>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hcd {
+
+/// Lowercase names of every planner the catalogue can build, sorted.
+std::vector<std::string> plannerNames();
+
+/// Builds the planner; applies displayName (Planner::setName) and every parameter through OMPL's ParamSet
+/// (planner->params().hasParam / setParam). Throws std::invalid_argument: for an unknown type, the message lists all valid
+/// names; for an unknown parameter, the message names the planner and lists that planner's valid parameter names
+/// (from params().getParamNames()); for a value OMPL rejects (setParam returns false), it names the parameter and the value.
+ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si);
+
+}  // namespace hcd

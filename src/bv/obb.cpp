@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/bv/obb.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+
+namespace hcd
+{
+Obb Obb::fitWithAxes(const std::vector<Vec3> &points, const Mat3 &axes)
+{
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    double magnitude = 0.0;
+    for (const Vec3 &p : points)
+    {
+        const Vec3 local = axes.transpose() * p;
+        lo = lo.cwiseMin(local);
+        hi = hi.cwiseMax(local);
+        magnitude = std::max(magnitude, p.cwiseAbs().maxCoeff());
+    }
+    Obb box;
+    box.axes = axes;
+    box.center = axes * (0.5 * (lo + hi));
+    const double margin = 1e-9 * magnitude + 1e-300;
+    box.halfExtents = (0.5 * (hi - lo)).array() + margin;
+    return box;
+}
+
+Obb Obb::fit(const std::vector<Vec3> &points)
+{
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3 &p : points)
+        mean += p;
+    mean /= double(points.size());
+    Mat3 covariance = Mat3::Zero();
+    for (const Vec3 &p : points)
+        covariance += (p - mean) * (p - mean).transpose();
+
+    Obb best = fitWithAxes(points, Mat3::Identity());
+    Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);
+    if (solver.info() == Eigen::Success && solver.eigenvectors().allFinite())
+    {
+        Mat3 axes = solver.eigenvectors();
+        axes.col(2) = axes.col(0).cross(axes.col(1)).normalized();  // exactly right-handed, orthonormal
+        axes.col(1) = axes.col(2).cross(axes.col(0)).normalized();
+        axes.col(0).normalize();
+        const Obb principal = fitWithAxes(points, axes);
+        if (principal.volume() < best.volume())
+            best = principal;
+    }
+    return best;
+}
+
+bool Obb::contains(const Vec3 &p) const
+{
+    const Vec3 local = axes.transpose() * (p - center);
+    return (local.cwiseAbs().array() <= halfExtents.array()).all();
+}
+
+bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance)
+{
+    // Express a's axes and centre in b's box frame: R = B^T (Q A), t = B^T (Q ca + p - cb).
+    const Mat3 aAxesWorld = worldFromA.rotation * a.axes;
+    const Mat3 r = b.axes.transpose() * aAxesWorld;
+    const Vec3 t = b.axes.transpose() * (worldFromA.apply(a.center) - b.center);
+    // The small constant keeps near-parallel edge-cross axes (which degenerate) conservative.
+    const Mat3 absR = r.cwiseAbs().array() + 1e-12;
+    const Vec3 &ea = a.halfExtents, &eb = b.halfExtents;
+
+    // b's face axes.
+    for (int i = 0; i < 3; ++i)
+        if (std::fabs(t[i]) > eb[i] + absR.row(i).dot(ea) + tolerance)
+            return false;
+    // a's face axes.
+    for (int j = 0; j < 3; ++j)
+        if (std::fabs(t.dot(r.col(j))) > ea[j] + absR.col(j).dot(eb) + tolerance)
+            return false;
+    // Cross products of b's axis i with a's axis j.
+    for (int i = 0; i < 3; ++i)
+    {
+        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+        for (int j = 0; j < 3; ++j)
+        {
+            const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            const double ra = ea[j1] * absR(i, j2) + ea[j2] * absR(i, j1);
+            const double rb = eb[i1] * absR(i2, j) + eb[i2] * absR(i1, j);
+            const double d = t[i2] * r(i1, j) - t[i1] * r(i2, j);
+            if (std::fabs(d) > ra + rb + tolerance)
+                return false;
+        }
+    }
+    return true;
+}
+}  // namespace hcd

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `hybridcd solve`: plan, simplify, report, write the path in OMPL.app's .path format.
+#include "command_line.h"
+#include "commands.h"
+
+#include "hybridcd/io/input_error.h"
+#include "hybridcd/io/path_file.h"
+#include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/query/checker_registry.h"
+#include "planners/planner_catalogue.h"
+
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace hcd::cli
+{
+namespace
+{
+// "k=v,k2=v2" into ordered pairs.
+std::vector<std::pair<std::string, std::string>> parseParams(const std::string &text)
+{
+    std::vector<std::pair<std::string, std::string>> out;
+    std::stringstream items(text);
+    std::string item;
+    while (std::getline(items, item, ','))
+    {
+        if (item.empty())
+            continue;
+        const auto eq = item.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw UsageError("--param expects KEY=VALUE[,KEY=VALUE...], got '" + item + "'");
+        out.emplace_back(item.substr(0, eq), item.substr(eq + 1));
+    }
+    return out;
+}
+}  // namespace
+
+int runSolve(const std::vector<std::string> &args)
+{
+    const CommandLine cl(args, {"planner", "time", "seed", "checker", "out", "param"}, {"verbose"});
+    if (cl.text("planner", "") == "help")
+    {
+        for (const std::string &n : plannerNames())
+            std::cout << n << '\n';
+        return kSuccess;
+    }
+    // The seed must be set before OMPL creates its first random number generator.
+    if (cl.has("seed"))
+        ompl::RNG::setSeed(std::uint_fast32_t(cl.integer("seed", 0)));
+    if (cl.has("verbose"))
+        ompl::msg::setLogLevel(ompl::msg::LOG_INFO);
+    const double timeLimit = cl.number("time", 10.0);
+    if (timeLimit <= 0.0)
+        throw UsageError("--time needs a positive number of seconds");
+
+    const LoadedProblem problem = loadProblem(cl.problem());
+    const std::string checkerName = cl.text("checker", "obb");
+    const auto buildStart = std::chrono::steady_clock::now();
+    std::shared_ptr<const CollisionChecker> checker = makeChecker(checkerName, problem.scene);
+    const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+
+    PlanningProblem planning = makePlanningProblem(problem, checker);
+    PlannerRequest request{cl.text("planner", "rrtconnect"), "", parseParams(cl.text("param", ""))};
+    planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation()));
+    planning.setup->setup();
+
+    const auto &pdef = planning.setup->getProblemDefinition();
+    if (!planning.validity->isValid(pdef->getStartState(0)))
+        std::cerr << "hybridcd: warning: the start state is in collision or out of bounds\n";
+    planning.validity->resetCounters();
+
+    const ompl::base::PlannerStatus status = planning.setup->solve(timeLimit);
+    const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
+    const double solveSeconds = planning.setup->getLastPlanComputationTime();
+    const std::uint64_t checks = planning.validity->checkCount();
+    const double checkSeconds = planning.validity->checkSeconds();
+
+    std::cout << "problem: " << problem.config.name << " (" << (problem.config.planar ? "SE2" : "SE3") << ")\n"
+              << "checker: " << checker->name() << " (built in " << buildSeconds * 1e3 << " ms)\n"
+              << "planner: " << planning.setup->getPlanner()->getName() << '\n'
+              << "solved: " << (solved ? "yes" : "no") << " (" << status.asString() << ")\n"
+              << "solve time: " << solveSeconds << " s\n"
+              << "collision checks: " << checks << '\n'
+              << "collision checking time: " << checkSeconds << " s"
+              << (checks ? " (" + std::to_string(1e9 * checkSeconds / double(checks)) + " ns per check)" : "") << '\n';
+    if (!solved)
+        return kNotSolved;
+
+    planning.setup->simplifySolution();
+    ompl::geometric::PathGeometric &path = planning.setup->getSolutionPath();
+    std::cout << "simplified path length: " << path.length() << '\n' << "path states: " << path.getStateCount() << '\n';
+
+    const std::string outPath = cl.text("out", problem.config.name + ".path");
+    std::ofstream out(outPath);
+    if (!out)
+        throw InputError(outPath, 0, "cannot write the solution path");
+    std::vector<std::vector<double>> rows;
+    for (std::size_t i = 0; i < path.getStateCount(); ++i)
+        rows.push_back(stateToPoseValues(path.getState(i), planning.planar));
+    writePoses(out, rows);
+    std::cout << "path written to: " << outPath << '\n';
+    return kSuccess;
+}
+}  // namespace hcd::cli

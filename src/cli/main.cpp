@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// hybridcd: exact collision checking for OMPL rigid-body planning, from the command line.
+#include "command_line.h"
+#include "commands.h"
+
+#include "hybridcd/io/input_error.h"
+
+#include <ompl/util/Console.h>
+
+#include <iostream>
+
+namespace
+{
+const char *kUsage = R"(usage: hybridcd COMMAND PROBLEM.cfg [options]
+
+commands:
+  solve    plan a path: [--planner NAME] [--time SECONDS] [--seed N] [--checker NAME]
+           [--out PATH_FILE] [--param KEY=VALUE,...] [--verbose]
+  check    classify poses: --states FILE [--checker NAME]   (prints 1 free / 0 colliding per pose)
+  inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
+
+Checkers: obb (default), bruteforce. Planners: see 'hybridcd solve --planner help'.
+)";
+}
+
+int main(int argc, char **argv)
+{
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help")
+    {
+        std::cout << kUsage;
+        return args.empty() ? hcd::cli::kBadInput : hcd::cli::kSuccess;
+    }
+    const std::string command = args[0];
+    args.erase(args.begin());
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    try
+    {
+        if (command == "solve")
+            return hcd::cli::runSolve(args);
+        if (command == "check")
+            return hcd::cli::runCheck(args);
+        if (command == "inspect")
+            return hcd::cli::runInspect(args);
+        throw hcd::cli::UsageError("unknown command '" + command + "'");
+    }
+    catch (const hcd::cli::UsageError &e)
+    {
+        std::cerr << "hybridcd: " << e.what() << "\n\n" << kUsage;
+    }
+    catch (const hcd::InputError &e)
+    {
+        std::cerr << "hybridcd: error: " << e.what() << '\n';
+    }
+    catch (const std::exception &e)
+    {
+        std::cerr << "hybridcd: error: " << e.what() << '\n';
+    }
+    return hcd::cli::kBadInput;
+}

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/geometry/exact_predicates.h"
+
+#include <boost/multiprecision/cpp_int.hpp>
+
+#include <cmath>
+
+namespace hcd
+{
+namespace
+{
+using Rational = boost::multiprecision::cpp_rational;
+
+thread_local unsigned long long fallbackCount = 0;
+
+// Shewchuk's bounds are (7 + 56 eps) eps and (3 + 16 eps) eps with eps = 2^-53; we round up
+// generously, which only sends slightly more cases to the exact path.
+constexpr double kOrient3dErrorBound = 1.0e-15;
+constexpr double kOrient2dErrorBound = 4.0e-16;
+// Below this the filter's products may be denormal and the bound is no longer valid.
+constexpr double kTinyPermanent = 1.0e-250;
+
+int sign(const Rational &r) { return r.sign(); }
+
+int orient3dExact(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
+{
+    ++fallbackCount;
+    const Rational ax(a.x()), ay(a.y()), az(a.z());
+    const Rational bx = Rational(b.x()) - ax, by = Rational(b.y()) - ay, bz = Rational(b.z()) - az;
+    const Rational cx = Rational(c.x()) - ax, cy = Rational(c.y()) - ay, cz = Rational(c.z()) - az;
+    const Rational dx = Rational(d.x()) - ax, dy = Rational(d.y()) - ay, dz = Rational(d.z()) - az;
+    const Rational det = bx * (cy * dz - cz * dy) - by * (cx * dz - cz * dx) + bz * (cx * dy - cy * dx);
+    return sign(det);
+}
+
+int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy)
+{
+    ++fallbackCount;
+    const Rational rax(ax), ray(ay);
+    const Rational det = (Rational(bx) - rax) * (Rational(cy) - ray) - (Rational(by) - ray) * (Rational(cx) - rax);
+    return sign(det);
+}
+}  // namespace
+
+int orient3d(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
+{
+    const double bx = b.x() - a.x(), by = b.y() - a.y(), bz = b.z() - a.z();
+    const double cx = c.x() - a.x(), cy = c.y() - a.y(), cz = c.z() - a.z();
+    const double dx = d.x() - a.x(), dy = d.y() - a.y(), dz = d.z() - a.z();
+    const double m1 = cy * dz, m2 = cz * dy, m3 = cx * dz, m4 = cz * dx, m5 = cx * dy, m6 = cy * dx;
+    const double det = bx * (m1 - m2) - by * (m3 - m4) + bz * (m5 - m6);
+    const double permanent = std::fabs(bx) * (std::fabs(m1) + std::fabs(m2)) +
+                             std::fabs(by) * (std::fabs(m3) + std::fabs(m4)) +
+                             std::fabs(bz) * (std::fabs(m5) + std::fabs(m6));
+    const double bound = kOrient3dErrorBound * permanent;
+    if (std::isfinite(permanent) && permanent > kTinyPermanent)
+    {
+        if (det > bound)
+            return 1;
+        if (det < -bound)
+            return -1;
+    }
+    if (!std::isfinite(a.sum() + b.sum() + c.sum() + d.sum()))
+        return 0;  // NaN/inf input has no orientation; callers reject such poses earlier.
+    return orient3dExact(a, b, c, d);
+}
+
+int orient2d(double ax, double ay, double bx, double by, double cx, double cy)
+{
+    const double l = (bx - ax) * (cy - ay), r = (by - ay) * (cx - ax);
+    const double det = l - r;
+    const double permanent = std::fabs(l) + std::fabs(r);
+    if (std::isfinite(permanent) && permanent > kTinyPermanent)
+    {
+        const double bound = kOrient2dErrorBound * permanent;
+        if (det > bound)
+            return 1;
+        if (det < -bound)
+            return -1;
+    }
+    if (!std::isfinite(ax + ay + bx + by + cx + cy))
+        return 0;
+    return orient2dExact(ax, ay, bx, by, cx, cy);
+}
+
+unsigned long long exactPredicateFallbacks() { return fallbackCount; }
+}  // namespace hcd

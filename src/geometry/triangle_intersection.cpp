@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/geometry/triangle_intersection.h"
+
+#include "hybridcd/geometry/exact_predicates.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hcd
+{
+namespace
+{
+// A projection onto a coordinate plane: drops axis `dropped`, keeps (u, v) in cyclic order.
+struct Projection
+{
+    int u, v;
+    explicit Projection(int dropped) : u((dropped + 1) % 3), v((dropped + 2) % 3) {}
+};
+
+int orient2dProjected(const Projection &pr, const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    return orient2d(a[pr.u], a[pr.v], b[pr.u], b[pr.v], c[pr.u], c[pr.v]);
+}
+
+// For r collinear with p, q (in the projection): is r within the closed segment pq?
+bool withinSegmentBox(const Projection &pr, const Vec3 &p, const Vec3 &q, const Vec3 &r)
+{
+    return std::min(p[pr.u], q[pr.u]) <= r[pr.u] && r[pr.u] <= std::max(p[pr.u], q[pr.u]) &&
+           std::min(p[pr.v], q[pr.v]) <= r[pr.v] && r[pr.v] <= std::max(p[pr.v], q[pr.v]);
+}
+
+bool segmentsIntersect2d(const Projection &pr, const Vec3 &p, const Vec3 &q, const Vec3 &r, const Vec3 &s)
+{
+    const int o1 = orient2dProjected(pr, p, q, r), o2 = orient2dProjected(pr, p, q, s);
+    const int o3 = orient2dProjected(pr, r, s, p), o4 = orient2dProjected(pr, r, s, q);
+    if (o1 * o2 < 0 && o3 * o4 < 0)
+        return true;
+    return (o1 == 0 && withinSegmentBox(pr, p, q, r)) || (o2 == 0 && withinSegmentBox(pr, p, q, s)) ||
+           (o3 == 0 && withinSegmentBox(pr, r, s, p)) || (o4 == 0 && withinSegmentBox(pr, r, s, q));
+}
+
+// Closed point-in-triangle in the projection; the projected triangle must be non-degenerate.
+bool pointInTriangle2d(const Projection &pr, const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    const int s = orient2dProjected(pr, a, b, c);
+    return orient2dProjected(pr, a, b, p) * s >= 0 && orient2dProjected(pr, b, c, p) * s >= 0 &&
+           orient2dProjected(pr, c, a, p) * s >= 0;
+}
+
+bool segmentIntersectsTriangle2d(const Projection &pr, const Vec3 &p, const Vec3 &q, const Vec3 &a, const Vec3 &b,
+                                 const Vec3 &c)
+{
+    return pointInTriangle2d(pr, p, a, b, c) || segmentsIntersect2d(pr, p, q, a, b) ||
+           segmentsIntersect2d(pr, p, q, b, c) || segmentsIntersect2d(pr, p, q, c, a);
+}
+
+// A coordinate plane onto which the non-degenerate triangle projects with non-zero area, so the
+// projection is one-to-one on the triangle's plane. The largest normal component is tried first.
+Projection faithfulProjection(const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    const Vec3 n = (b - a).cross(c - a).cwiseAbs();
+    int order[3] = {0, 1, 2};
+    std::sort(order, order + 3, [&](int i, int j) { return n[i] > n[j]; });
+    for (int axis : order)
+        if (orient2dProjected(Projection(axis), a, b, c) != 0)
+            return Projection(axis);
+    return Projection(order[0]);  // unreachable for non-degenerate triangles
+}
+
+// Segment pq against a non-degenerate triangle, given the exact sides of p and q w.r.t. its plane.
+bool segmentCrossesTriangle(const Vec3 &p, const Vec3 &q, int sideP, int sideQ, const Vec3 &a, const Vec3 &b,
+                            const Vec3 &c)
+{
+    if (sideP * sideQ > 0)
+        return false;
+    if (sideP == 0 && sideQ == 0)
+        return segmentIntersectsTriangle2d(faithfulProjection(a, b, c), p, q, a, b, c);
+    // The line pq is not in the plane and the segment reaches it: the crossing point lies in the
+    // closed triangle iff the line passes no edge strictly on opposite sides (Pluecker test).
+    const int o1 = orient3d(p, q, a, b), o2 = orient3d(p, q, b, c), o3 = orient3d(p, q, c, a);
+    const bool anyPositive = o1 > 0 || o2 > 0 || o3 > 0;
+    const bool anyNegative = o1 < 0 || o2 < 0 || o3 < 0;
+    return !(anyPositive && anyNegative);
+}
+}  // namespace
+
+bool isDegenerateTriangle(const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    return orient2dProjected(Projection(0), a, b, c) == 0 && orient2dProjected(Projection(1), a, b, c) == 0 &&
+           orient2dProjected(Projection(2), a, b, c) == 0;
+}
+
+bool segmentsIntersect(const Vec3 &p, const Vec3 &q, const Vec3 &r, const Vec3 &s)
+{
+    if (orient3d(p, q, r, s) != 0)
+        return false;
+    // Coplanar: some coordinate projection is one-to-one on the common plane (or line), and no
+    // projection can separate segments that meet, so they meet iff they meet in all three.
+    return segmentsIntersect2d(Projection(0), p, q, r, s) && segmentsIntersect2d(Projection(1), p, q, r, s) &&
+           segmentsIntersect2d(Projection(2), p, q, r, s);
+}
+
+bool segmentIntersectsTriangle(const Vec3 &p, const Vec3 &q, const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    if (isDegenerateTriangle(a, b, c))
+        return segmentsIntersect(p, q, a, b) || segmentsIntersect(p, q, b, c) || segmentsIntersect(p, q, c, a);
+    return segmentCrossesTriangle(p, q, orient3d(a, b, c, p), orient3d(a, b, c, q), a, b, c);
+}
+
+bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
+{
+    // Plane rejection first: it settles the vast majority of pairs with six predicates.
+    const int sb0 = orient3d(a0, a1, a2, b0), sb1 = orient3d(a0, a1, a2, b1), sb2 = orient3d(a0, a1, a2, b2);
+    if ((sb0 > 0 && sb1 > 0 && sb2 > 0) || (sb0 < 0 && sb1 < 0 && sb2 < 0))
+        return false;
+    const int sa0 = orient3d(b0, b1, b2, a0), sa1 = orient3d(b0, b1, b2, a1), sa2 = orient3d(b0, b1, b2, a2);
+    if ((sa0 > 0 && sa1 > 0 && sa2 > 0) || (sa0 < 0 && sa1 < 0 && sa2 < 0))
+        return false;
+
+    const bool degenerateA = isDegenerateTriangle(a0, a1, a2);
+    const bool degenerateB = isDegenerateTriangle(b0, b1, b2);
+    if (degenerateA || degenerateB)
+    {
+        // A degenerate triangle is the union of its edges.
+        if (degenerateA && degenerateB)
+        {
+            const Vec3 *ea[3][2] = {{&a0, &a1}, {&a1, &a2}, {&a2, &a0}};
+            const Vec3 *eb[3][2] = {{&b0, &b1}, {&b1, &b2}, {&b2, &b0}};
+            for (auto &x : ea)
+                for (auto &y : eb)
+                    if (segmentsIntersect(*x[0], *x[1], *y[0], *y[1]))
+                        return true;
+            return false;
+        }
+        if (degenerateA)
+            return segmentIntersectsTriangle(a0, a1, b0, b1, b2) || segmentIntersectsTriangle(a1, a2, b0, b1, b2) ||
+                   segmentIntersectsTriangle(a2, a0, b0, b1, b2);
+        return segmentIntersectsTriangle(b0, b1, a0, a1, a2) || segmentIntersectsTriangle(b1, b2, a0, a1, a2) ||
+               segmentIntersectsTriangle(b2, b0, a0, a1, a2);
+    }
+
+    if (sb0 == 0 && sb1 == 0 && sb2 == 0)
+    {
+        // Coplanar: edges cross, or one triangle holds a vertex of the other.
+        const Projection pr = faithfulProjection(a0, a1, a2);
+        const Vec3 *ea[3][2] = {{&a0, &a1}, {&a1, &a2}, {&a2, &a0}};
+        const Vec3 *eb[3][2] = {{&b0, &b1}, {&b1, &b2}, {&b2, &b0}};
+        for (auto &x : ea)
+            for (auto &y : eb)
+                if (segmentsIntersect2d(pr, *x[0], *x[1], *y[0], *y[1]))
+                    return true;
+        return pointInTriangle2d(pr, a0, b0, b1, b2) || pointInTriangle2d(pr, b0, a0, a1, a2);
+    }
+
+    // General position: an edge of one triangle meets the other triangle.
+    return segmentCrossesTriangle(a0, a1, sa0, sa1, b0, b1, b2) || segmentCrossesTriangle(a1, a2, sa1, sa2, b0, b1, b2) ||
+           segmentCrossesTriangle(a2, a0, sa2, sa0, b0, b1, b2) || segmentCrossesTriangle(b0, b1, sb0, sb1, a0, a1, a2) ||
+           segmentCrossesTriangle(b1, b2, sb1, sb2, a0, a1, a2) || segmentCrossesTriangle(b2, b0, sb2, sb0, a0, a1, a2);
+}
+}  // namespace hcd

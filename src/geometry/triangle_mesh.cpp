@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/geometry/triangle_mesh.h"
+
+#include "hybridcd/geometry/triangle_intersection.h"
+
+#include <algorithm>
+#include <map>
+#include <tuple>
+
+namespace hcd
+{
+using Triangle = TriangleMesh::Triangle;
+
+BoundingBox TriangleMesh::bounds() const
+{
+    BoundingBox box;
+    for (const Triangle &t : triangles)
+        for (std::uint32_t v : t)
+            box.extend(vertices[v]);
+    return box;
+}
+
+double TriangleMesh::radiusAboutOrigin() const
+{
+    double r = 0.0;
+    for (const Vec3 &v : vertices)
+        r = std::max(r, v.norm());
+    return r;
+}
+
+std::size_t TriangleMesh::memoryBytes() const
+{
+    return vertices.capacity() * sizeof(Vec3) + triangles.capacity() * sizeof(Triangle);
+}
+
+bool isClosed(const TriangleMesh &mesh)
+{
+    if (mesh.empty())
+        return false;
+    // Canonical (sorted) corner triple identifies a face regardless of orientation.
+    std::vector<Triangle> faces;
+    faces.reserve(mesh.triangles.size());
+    for (Triangle t : mesh.triangles)
+    {
+        std::sort(t.begin(), t.end());
+        faces.push_back(t);
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    edges.reserve(faces.size() * 3);
+    for (const Triangle &f : faces)
+    {
+        edges.emplace_back(f[0], f[1]);
+        edges.emplace_back(f[1], f[2]);
+        edges.emplace_back(f[0], f[2]);
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i < edges.size();)
+    {
+        std::size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i])
+            ++j;
+        if ((j - i) % 2 != 0)
+            return false;
+        i = j;
+    }
+    return true;
+}
+
+std::size_t weldAndDropDegenerate(TriangleMesh &mesh)
+{
+    std::map<std::tuple<double, double, double>, std::uint32_t> index;
+    std::vector<Vec3> welded;
+    std::vector<std::uint32_t> remap(mesh.vertices.size());
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    {
+        const Vec3 &v = mesh.vertices[i];
+        auto [it, inserted] = index.emplace(std::make_tuple(v.x(), v.y(), v.z()), std::uint32_t(welded.size()));
+        if (inserted)
+            welded.push_back(v);
+        remap[i] = it->second;
+    }
+
+    std::vector<Triangle> kept;
+    kept.reserve(mesh.triangles.size());
+    for (const Triangle &t : mesh.triangles)
+    {
+        const Triangle r{remap[t[0]], remap[t[1]], remap[t[2]]};
+        if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2] || isDegenerateTriangle(welded[r[0]], welded[r[1]], welded[r[2]]))
+            continue;
+        kept.push_back(r);
+    }
+    const std::size_t dropped = mesh.triangles.size() - kept.size();
+    mesh.vertices = std::move(welded);
+    mesh.triangles = std::move(kept);
+    return dropped;
+}
+}  // namespace hcd

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/io/mesh_loader.h"
+
+#include "hybridcd/io/input_error.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <fstream>
+
+namespace hcd
+{
+namespace
+{
+// Depth-first over the node graph in the order OMPL.app walks it, transform = parent * node.
+template <typename Visit>
+void visitNodes(const aiScene *scene, const aiNode *node, aiMatrix4x4 transform, const Visit &visit)
+{
+    transform *= node->mTransformation;
+    for (unsigned i = 0; i < node->mNumMeshes; ++i)
+        visit(scene->mMeshes[node->mMeshes[i]], transform);
+    for (unsigned c = 0; c < node->mNumChildren; ++c)
+        visitNodes(scene, node->mChildren[c], transform, visit);
+}
+}  // namespace
+
+LoadedMesh loadMesh(const std::string &path, MeshRole role)
+{
+    if (!std::ifstream(path).good())
+        throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
+
+    Assimp::Importer importer;
+    const aiScene *scene =
+        importer.ReadFile(path, aiProcess_GenNormals | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                    aiProcess_SortByPType | aiProcess_OptimizeGraph);
+    if (scene == nullptr)
+        throw InputError(path, 0, std::string("cannot read mesh: ") + importer.GetErrorString());
+    if (!scene->HasMeshes() || scene->mRootNode == nullptr)
+        throw InputError(path, 0, "mesh file holds no geometry");
+
+    LoadedMesh out;
+    std::vector<aiVector3D> corners;  // three per triangle, in single precision as OMPL.app has them
+    aiVector3D vertexSum(0.0f, 0.0f, 0.0f);
+    std::size_t vertexCount = 0;
+    visitNodes(scene, scene->mRootNode, aiMatrix4x4(), [&](const aiMesh *m, const aiMatrix4x4 &transform) {
+        for (unsigned v = 0; v < m->mNumVertices; ++v)
+        {
+            vertexSum += transform * m->mVertices[v];
+            ++vertexCount;
+        }
+        for (unsigned f = 0; f < m->mNumFaces; ++f)
+        {
+            const aiFace &face = m->mFaces[f];
+            if (face.mNumIndices != 3)
+            {
+                ++out.skippedNonTriangles;
+                continue;
+            }
+            for (int k = 0; k < 3; ++k)
+                corners.push_back(transform * m->mVertices[face.mIndices[k]]);
+        }
+    });
+    out.sourceTriangles = corners.size() / 3;
+    if (corners.empty())
+        throw InputError(path, 0, "mesh file holds no triangle (" + std::to_string(out.skippedNonTriangles) +
+                                      " point or line primitives only)");
+
+    aiVector3D shift(0.0f, 0.0f, 0.0f);
+    if (role != MeshRole::Environment)
+    {
+        shift = vertexSum / float(vertexCount);
+        if (role == MeshRole::RobotPlanar)
+            shift.z = 0.0f;
+    }
+    out.centeringShift = Vec3(shift.x, shift.y, shift.z);
+
+    TriangleMesh &mesh = out.mesh;
+    mesh.vertices.reserve(corners.size());
+    for (const aiVector3D &c : corners)
+    {
+        const aiVector3D p = c - shift;  // subtracted in float, exactly as OMPL.app does
+        mesh.vertices.emplace_back(p.x, p.y, p.z);
+    }
+    for (std::uint32_t t = 0; t < out.sourceTriangles; ++t)
+        mesh.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+    for (const Vec3 &v : mesh.vertices)
+        if (!v.allFinite())
+            throw InputError(path, 0, "mesh has a non-finite vertex coordinate");
+    out.droppedDegenerate = weldAndDropDegenerate(mesh);
+    if (mesh.empty())
+        throw InputError(path, 0, "every triangle of the mesh is degenerate (zero area)");
+    return out;
+}
+}  // namespace hcd

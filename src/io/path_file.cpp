@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/io/path_file.h"
+
+#include "hybridcd/io/input_error.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace hcd
+{
+namespace
+{
+// Reads every non-blank, non-comment line as at least `columns` finite numbers.
+std::vector<PoseRecord> readRows(const std::string &path, std::size_t columns, const char *what)
+{
+    std::ifstream in(path);
+    if (!in)
+        throw InputError(path, 0, "cannot open file (missing or unreadable)");
+    std::vector<PoseRecord> rows;
+    std::string line;
+    int lineNo = 0;
+    while (std::getline(in, line))
+    {
+        ++lineNo;
+        const auto hash = line.find('#');
+        if (hash != std::string::npos)
+            line.erase(hash);
+        std::istringstream words(line);
+        std::string word;
+        PoseRecord row;
+        row.line = lineNo;
+        while (row.values.size() < columns && words >> word)
+        {
+            double v = 0.0;
+            std::size_t used = 0;
+            try
+            {
+                v = std::stod(word, &used);
+            }
+            catch (const std::exception &)
+            {
+                used = 0;
+            }
+            if (used != word.size())
+                throw InputError(path, lineNo, "'" + word + "' is not a number");
+            if (!std::isfinite(v))
+                throw InputError(path, lineNo, "'" + word + "' is not a finite number");
+            row.values.push_back(v);
+        }
+        if (row.values.empty())
+            continue;
+        if (row.values.size() < columns)
+            throw InputError(path, lineNo,
+                             std::string(what) + " needs " + std::to_string(columns) + " numbers, found " +
+                                 std::to_string(row.values.size()));
+        rows.push_back(std::move(row));
+    }
+    return rows;
+}
+}  // namespace
+
+RigidTransform poseToTransform(const PoseRecord &pose, bool planar)
+{
+    const auto &v = pose.values;
+    if (planar)
+        return RigidTransform::fromPlanarPose(v[0], v[1], v[2]);
+    return RigidTransform::fromTranslationQuaternion(Vec3(v[0], v[1], v[2]), v[6], v[3], v[4], v[5]);
+}
+
+std::vector<PoseRecord> readPoses(const std::string &path, bool planar)
+{
+    return readRows(path, poseColumns(planar), planar ? "a planar pose (x y theta)" : "a pose (x y z qx qy qz qw)");
+}
+
+std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar)
+{
+    const std::size_t n = poseColumns(planar);
+    std::vector<std::pair<PoseRecord, PoseRecord>> motions;
+    for (PoseRecord &row : readRows(path, 2 * n, "a motion (two poses)"))
+    {
+        PoseRecord a{{row.values.begin(), row.values.begin() + long(n)}, row.line};
+        PoseRecord b{{row.values.begin() + long(n), row.values.begin() + long(2 * n)}, row.line};
+        motions.emplace_back(std::move(a), std::move(b));
+    }
+    return motions;
+}
+
+void writePoses(std::ostream &out, const std::vector<std::vector<double>> &poses)
+{
+    const auto old = out.precision(std::numeric_limits<double>::max_digits10);
+    for (const auto &p : poses)
+    {
+        for (std::size_t i = 0; i < p.size(); ++i)
+            out << (i ? " " : "") << p[i];
+        out << '\n';
+    }
+    out.precision(old);
+}
+}  // namespace hcd

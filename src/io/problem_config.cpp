@@ -1,0 +1,231 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/io/problem_config.h"
+
+#include "hybridcd/io/input_error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+namespace hcd
+{
+namespace
+{
+std::string trim(const std::string &s)
+{
+    const auto b = s.find_first_not_of(" \t\r\n");
+    if (b == std::string::npos)
+        return {};
+    const auto e = s.find_last_not_of(" \t\r\n");
+    return s.substr(b, e - b + 1);
+}
+
+std::string lower(std::string s)
+{
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+struct Entry
+{
+    std::string value;
+    int line;
+};
+
+class Parser
+{
+public:
+    explicit Parser(std::string path) : path_(std::move(path)) {}
+
+    double number(const std::string &key, const Entry &e) const
+    {
+        try
+        {
+            std::size_t used = 0;
+            const double v = std::stod(e.value, &used);
+            if (trim(e.value.substr(used)).empty() && std::isfinite(v))
+                return v;
+        }
+        catch (const std::exception &)
+        {
+        }
+        throw InputError(path_, e.line, "'" + key + "' needs a finite number, got '" + e.value + "'");
+    }
+
+    const std::string &path() const { return path_; }
+
+private:
+    std::string path_;
+};
+}  // namespace
+
+ProblemConfig readProblemConfig(const std::string &path)
+{
+    std::ifstream in(path);
+    if (!in)
+        throw InputError(path, 0, "cannot open problem file (missing or unreadable)");
+
+    ProblemConfig cfg;
+    cfg.path = path;
+    Parser parser(path);
+    std::map<std::string, Entry> problem, benchmark;
+    std::string section;
+    std::string raw;
+    int lineNo = 0;
+    while (std::getline(in, raw))
+    {
+        ++lineNo;
+        const std::string line = trim(raw);
+        if (line.empty() || line[0] == '#' || line[0] == ';')
+            continue;
+        if (line.front() == '[')
+        {
+            if (line.back() != ']')
+                throw InputError(path, lineNo, "malformed section header '" + line + "'");
+            section = lower(trim(line.substr(1, line.size() - 2)));
+            if (section != "problem" && section != "benchmark" && section != "planner")
+                throw InputError(path, lineNo,
+                                 "unknown section [" + section + "]; expected [problem], [benchmark] or [planner]");
+            continue;
+        }
+        const auto eq = line.find('=');
+        if (eq == std::string::npos)
+            throw InputError(path, lineNo, "expected 'key = value', got '" + line + "'");
+        const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
+        if (key.empty())
+            throw InputError(path, lineNo, "empty key before '='");
+        if (section.empty())
+            throw InputError(path, lineNo, "'" + key + "' appears before any [section]");
+
+        if (section == "problem")
+            problem[key] = {value, lineNo};
+        else if (section == "benchmark")
+            benchmark[key] = {value, lineNo};
+        else
+        {
+            // "type=" declares a planner; "type.name=" and "type.param=" refine the latest of that type.
+            const auto dot = key.find('.');
+            if (dot == std::string::npos)
+            {
+                if (!value.empty())
+                    throw InputError(path, lineNo, "planner declaration '" + key + "=' takes no value, got '" + value + "'");
+                cfg.planners.push_back({lower(key), "", {}});
+                continue;
+            }
+            const std::string type = lower(key.substr(0, dot)), param = key.substr(dot + 1);
+            auto it = std::find_if(cfg.planners.rbegin(), cfg.planners.rend(),
+                                   [&](const PlannerRequest &r) { return r.type == type; });
+            if (it == cfg.planners.rend())
+                throw InputError(path, lineNo, "setting for planner '" + type + "' before a '" + type + "=' line declares it");
+            if (param == "name")
+                it->displayName = value;
+            else
+                it->parameters.emplace_back(param, value);
+        }
+    }
+
+    auto get = [&](const std::string &key) -> const Entry * {
+        auto it = problem.find(key);
+        return it == problem.end() ? nullptr : &it->second;
+    };
+    auto require = [&](const std::string &key) -> const Entry & {
+        const Entry *e = get(key);
+        if (!e)
+            throw InputError(path, 0, "[problem] section lacks the required key '" + key + "'");
+        return *e;
+    };
+    auto numberOr = [&](const std::string &key, double fallback) {
+        const Entry *e = get(key);
+        return e ? parser.number(key, *e) : fallback;
+    };
+
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    auto resolve = [&](const std::string &mesh) {
+        const std::filesystem::path p(mesh);
+        return (p.is_absolute() ? p : folder / p).lexically_normal().string();
+    };
+    const Entry &robot = require("robot");
+    cfg.robotMesh = resolve(robot.value);
+    cfg.robotLine = robot.line;
+    if (const Entry *world = get("world"); world && !world->value.empty())
+    {
+        cfg.worldMesh = resolve(world->value);
+        cfg.worldLine = world->line;
+    }
+    cfg.name = get("name") ? get("name")->value : std::filesystem::path(path).stem().string();
+    cfg.planar = get("start.z") == nullptr;
+    if (const Entry *c = get("control"))
+        cfg.control = c->value;
+
+    auto readPose = [&](const std::string &prefix, ConfigPose &pose) {
+        pose.x = parser.number(prefix + ".x", require(prefix + ".x"));
+        pose.y = parser.number(prefix + ".y", require(prefix + ".y"));
+        pose.theta = numberOr(prefix + ".theta", 0.0);
+        if (!cfg.planar)
+        {
+            pose.z = parser.number(prefix + ".z", require(prefix + ".z"));
+            pose.axisX = numberOr(prefix + ".axis.x", 1.0);
+            pose.axisY = numberOr(prefix + ".axis.y", 0.0);
+            pose.axisZ = numberOr(prefix + ".axis.z", 0.0);
+        }
+    };
+    readPose("start", cfg.start);
+    readPose("goal", cfg.goal);
+
+    auto readRange = [&](const std::string &axis) -> std::optional<std::pair<double, double>> {
+        const Entry *lo = get("volume.min." + axis), *hi = get("volume.max." + axis);
+        if (!lo && !hi)
+            return std::nullopt;
+        if (!lo || !hi)
+            throw InputError(path, (lo ? lo : hi)->line, "volume." + axis + " needs both min and max");
+        const double a = parser.number("volume.min." + axis, *lo), b = parser.number("volume.max." + axis, *hi);
+        if (a > b)
+            throw InputError(path, lo->line, "volume.min." + axis + " exceeds volume.max." + axis);
+        return std::make_pair(a, b);
+    };
+    cfg.volumeX = readRange("x");
+    cfg.volumeY = readRange("y");
+    cfg.volumeZ = readRange("z");
+
+    if (const Entry *o = get("objective"))
+    {
+        const std::string obj = lower(o->value);
+        if (obj != "length" && obj != "max min clearance" && obj != "mechanical work")
+            throw InputError(path, o->line,
+                             "unknown objective '" + o->value + "'; expected length, max min clearance or mechanical work");
+        cfg.objective = obj;
+    }
+    if (const Entry *t = get("objective.threshold"))
+        cfg.objectiveThreshold = parser.number("objective.threshold", *t);
+    if (const Entry *s = get("sampler"))
+    {
+        const std::string sampler = lower(s->value);
+        static const char *known[] = {"uniform", "gaussian", "obstacle_based", "max_clearance", "bridge_test"};
+        if (std::find(std::begin(known), std::end(known), sampler) == std::end(known))
+            throw InputError(path, s->line,
+                             "unknown sampler '" + s->value +
+                                 "'; expected uniform, gaussian, obstacle_based, max_clearance or bridge_test");
+        cfg.sampler = sampler;
+    }
+
+    for (const auto &[key, e] : benchmark)
+    {
+        if (key == "time_limit")
+            cfg.benchmark.timeLimit = parser.number(key, e);
+        else if (key == "mem_limit")
+            cfg.benchmark.memoryLimit = parser.number(key, e);
+        else if (key == "run_count")
+        {
+            const double runs = parser.number(key, e);
+            if (runs < 1 || runs != std::floor(runs))
+                throw InputError(path, e.line, "run_count needs a positive whole number, got '" + e.value + "'");
+            cfg.benchmark.runCount = unsigned(runs);
+        }
+        // Other keys (output, save_paths, ...) are OMPL.app front-end options we do not need.
+    }
+    return cfg;
+}
+}  // namespace hcd

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/ompl/state_validity_checker.h"
+
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+
+#include <chrono>
+
+namespace hcd
+{
+RigidTransform poseOfState(const ompl::base::State *state, bool planar)
+{
+    if (planar)
+    {
+        const auto *s = state->as<ompl::base::SE2StateSpace::StateType>();
+        return RigidTransform::fromPlanarPose(s->getX(), s->getY(), s->getYaw());
+    }
+    const auto *s = state->as<ompl::base::SE3StateSpace::StateType>();
+    const auto &q = s->rotation();
+    return RigidTransform::fromTranslationQuaternion(Vec3(s->getX(), s->getY(), s->getZ()), q.w, q.x, q.y, q.z);
+}
+
+StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr &si,
+                                           std::shared_ptr<const CollisionChecker> checker, bool planar)
+    : ompl::base::StateValidityChecker(si), checker_(std::move(checker)), planar_(planar)
+{
+}
+
+bool StateValidityChecker::isValid(const ompl::base::State *state) const
+{
+    return si_->satisfiesBounds(state) && collisionFree(state);
+}
+
+bool StateValidityChecker::collisionFree(const ompl::base::State *state) const
+{
+    const auto start = std::chrono::steady_clock::now();
+    const bool free = !checker_->collides(poseOfState(state, planar_));
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start);
+    checks_.fetch_add(1, std::memory_order_relaxed);
+    nanoseconds_.fetch_add(std::uint64_t(ns.count()), std::memory_order_relaxed);
+    return free;
+}
+
+void StateValidityChecker::resetCounters()
+{
+    checks_.store(0);
+    nanoseconds_.store(0);
+}
+}  // namespace hcd

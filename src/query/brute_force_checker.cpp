@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/query/brute_force_checker.h"
+
+#include "hybridcd/geometry/triangle_intersection.h"
+
+#include <algorithm>
+
+namespace hcd
+{
+BruteForceChecker::BruteForceChecker(CollisionScene scene) : scene_(std::move(scene))
+{
+    const TriangleMesh &env = *scene_.environment;
+    for (std::uint32_t t = 0; t < env.triangleCount(); ++t)
+    {
+        const Vec3 &a = env.corner(t, 0), &b = env.corner(t, 1), &c = env.corner(t, 2);
+        environmentBoxes_.push_back({a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), t});
+    }
+    std::sort(environmentBoxes_.begin(), environmentBoxes_.end(),
+              [](const TriangleBox &p, const TriangleBox &q) { return p.min.x() < q.min.x(); });
+}
+
+bool BruteForceChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
+{
+    if (!worldFromRobot.isFinite())
+        return true;
+    const TriangleMesh &robot = *scene_.robot, &env = *scene_.environment;
+    std::vector<Vec3> corners(3 * robot.triangleCount());
+    std::vector<TriangleBox> robotBoxes(robot.triangleCount());
+    for (std::uint32_t t = 0; t < robot.triangleCount(); ++t)
+    {
+        for (int k = 0; k < 3; ++k)
+            corners[3 * t + k] = worldFromRobot.apply(robot.corner(t, k));
+        const Vec3 &a = corners[3 * t], &b = corners[3 * t + 1], &c = corners[3 * t + 2];
+        robotBoxes[t] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), t};
+    }
+    std::sort(robotBoxes.begin(), robotBoxes.end(),
+              [](const TriangleBox &p, const TriangleBox &q) { return p.min.x() < q.min.x(); });
+
+    std::uint64_t tests = 0;
+    // Tests one pair whose x-intervals overlap; true on contact.
+    auto test = [&](const TriangleBox &r, const TriangleBox &e) {
+        if (r.min.y() > e.max.y() || e.min.y() > r.max.y() || r.min.z() > e.max.z() || e.min.z() > r.max.z())
+            return false;
+        ++tests;
+        const std::uint32_t t = r.triangle;
+        return trianglesIntersect(corners[3 * t], corners[3 * t + 1], corners[3 * t + 2], env.corner(e.triangle, 0),
+                                  env.corner(e.triangle, 1), env.corner(e.triangle, 2));
+    };
+    // One sweep over both lists sorted by min.x reports every x-overlapping pair exactly once:
+    // whichever box starts first is paired with all boxes of the other list starting within it.
+    bool hit = false;
+    std::size_t i = 0, j = 0;
+    const std::size_t n = robotBoxes.size(), m = environmentBoxes_.size();
+    while (!hit && i < n && j < m)
+    {
+        if (robotBoxes[i].min.x() <= environmentBoxes_[j].min.x())
+        {
+            for (std::size_t k = j; !hit && k < m && environmentBoxes_[k].min.x() <= robotBoxes[i].max.x(); ++k)
+                hit = test(robotBoxes[i], environmentBoxes_[k]);
+            ++i;
+        }
+        else
+        {
+            for (std::size_t k = i; !hit && k < n && robotBoxes[k].min.x() <= environmentBoxes_[j].max.x(); ++k)
+                hit = test(robotBoxes[k], environmentBoxes_[j]);
+            ++j;
+        }
+    }
+    if (stats)
+        stats->primitiveTests += tests;
+    return hit;
+}
+}  // namespace hcd

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "support/test_support.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace hcd::test
+{
+std::string omplappResources()
+{
+    const char *env = std::getenv("HYBRIDCD_OMPLAPP_RESOURCES");
+    const std::string dir = env && *env ? env : HYBRIDCD_DEFAULT_OMPLAPP_RESOURCES;
+    return std::filesystem::is_directory(dir) ? dir : std::string();
+}
+
+std::optional<std::string> omplappProblem(const std::string &relative)
+{
+    const std::string dir = omplappResources();
+    if (dir.empty())
+        return std::nullopt;
+    const std::string path = dir + "/" + relative;
+    if (!std::filesystem::exists(path))
+        return std::nullopt;
+    return path;
+}
+
+std::string sourcePath(const std::string &relative) { return std::string(HYBRIDCD_SOURCE_DIR) + "/" + relative; }
+
+Mat3 randomRotation(TestRandom &rng)
+{
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double u1 = u(rng), u2 = 2.0 * M_PI * u(rng), u3 = 2.0 * M_PI * u(rng);
+    const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+    const Eigen::Quaterniond q(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
+    return q.normalized().toRotationMatrix();
+}
+
+std::vector<RigidTransform> randomPoses(const LoadedProblem &problem, std::size_t count, TestRandom &rng)
+{
+    const TriangleMesh &env = problem.world.mesh;
+    const BoundingBox box = env.bounds();
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double robotRadius = problem.robot.mesh.radiusAboutOrigin();
+    std::vector<RigidTransform> poses;
+    poses.reserve(count);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+        Vec3 centre;
+        if (i % 2 == 0)
+            centre = box.min + (box.max - box.min).cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
+        else
+        {
+            const Vec3 &v = env.vertices[std::size_t(u(rng) * double(env.vertices.size())) % env.vertices.size()];
+            centre = v + robotRadius * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+        }
+        if (problem.config.planar)
+            poses.push_back(RigidTransform::fromPlanarPose(centre.x(), centre.y(), 2.0 * M_PI * u(rng)));
+        else
+            poses.push_back({randomRotation(rng), centre});
+    }
+    return poses;
+}
+
+TriangleMesh boxMesh(const Vec3 &lo, const Vec3 &hi)
+{
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i)
+        m.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+    const std::uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto &f : faces)
+    {
+        m.triangles.push_back({f[0], f[1], f[2]});
+        m.triangles.push_back({f[0], f[2], f[3]});
+    }
+    return m;
+}
+
+std::string writeTempFile(const std::string &name, const std::string &text)
+{
+    const auto dir = std::filesystem::temp_directory_path() / ("hybridcd-tests-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto path = dir / name;
+    std::ofstream(path) << text;
+    return path.string();
+}
+}  // namespace hcd::test

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Shared helpers for the tests: where OMPL.app's problems are, random poses, scene builders.
+#pragma once
+
+#include "hybridcd/geometry/rigid_transform.h"
+#include "hybridcd/geometry/triangle_mesh.h"
+#include "hybridcd/io/problem_scene.h"
+
+#include <optional>
+#include <random>
+#include <string>
+
+namespace hcd::test
+{
+/// Pinned generator type so sequences are the same on every platform.
+using TestRandom = std::mt19937_64;
+
+/// Folder holding OMPL.app's 2D/ and 3D/ problems: $HYBRIDCD_OMPLAPP_RESOURCES, else the
+/// configured default (../shared/omplapp-resources beside the source tree). Empty if absent.
+std::string omplappResources();
+
+/// Full path of an OMPL.app problem such as "3D/cubicles.cfg", or nullopt if the resources are
+/// absent (tests then GTEST_SKIP with a message naming the variable to set).
+std::optional<std::string> omplappProblem(const std::string &relative);
+
+/// Path of a file in the source tree, e.g. "problems/window_3d.cfg".
+std::string sourcePath(const std::string &relative);
+
+/// A uniformly random rotation (Shoemake's method).
+Mat3 randomRotation(TestRandom &rng);
+
+/// Random poses for a problem: half with the robot centre uniform in the environment's bounding
+/// box, half near a random environment vertex, so that free and colliding poses both occur often.
+/// Planar problems get planar poses (rotation about z only).
+std::vector<RigidTransform> randomPoses(const LoadedProblem &problem, std::size_t count, TestRandom &rng);
+
+/// An axis-aligned closed box [lo, hi] as 12 triangles.
+TriangleMesh boxMesh(const Vec3 &lo, const Vec3 &hi);
+
+/// Writes `text` to a fresh file in the test's temporary folder and returns its path.
+std::string writeTempFile(const std::string &name, const std::string &text);
+
+#define HYBRIDCD_REQUIRE_OMPLAPP(var, relative)                                                               \
+    const auto var##_opt = ::hcd::test::omplappProblem(relative);                                             \
+    if (!var##_opt)                                                                                           \
+        GTEST_SKIP() << "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES to the folder holding " \
+                        "2D/ and 3D/ (looked for " relative ")";                                              \
+    const std::string var = *var##_opt
+}  // namespace hcd::test
