@@ -62,6 +62,11 @@ int orient3d(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
     }
     if (!std::isfinite(a.sum() + b.sum() + c.sum() + d.sum()))
         return 0;  // NaN/inf input has no orientation; callers reject such poses earlier.
+    // Four points sharing one coordinate exactly are coplanar (a zero column): the common case of
+    // planar problems, whose robot and walls share their bottom plane, needs no exact arithmetic.
+    for (int k = 0; k < 3; ++k)
+        if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
+            return 0;
     return orient3dExact(a, b, c, d);
 }
 

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "support/test_support.h"
+
+#include "hybridcd/bvh/obb_tree.h"
+#include "hybridcd/io/mesh_loader.h"
+
+#include <gtest/gtest.h>
+
+using namespace hcd;
+
+namespace
+{
+// Every node's box holds every corner of every triangle below it (checked in the box frame).
+void expectContainsSubtree(const ObbTree &tree)
+{
+    const auto &nodes = tree.nodes();
+    std::vector<std::size_t> counted(nodes.size(), 0);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+    {
+        const ObbTree::Node &n = nodes[i];
+        for (std::uint32_t k = 0; k < n.triangleCount; ++k)
+        {
+            const std::uint32_t t = tree.triangleOrder()[n.firstTriangle + k];
+            for (int c = 0; c < 3; ++c)
+                ASSERT_TRUE(n.box.contains(tree.mesh().corner(t, c))) << "node " << i << " triangle " << t;
+        }
+        if (!n.isLeaf())
+        {
+            // Children partition the parent's run.
+            const ObbTree::Node &l = nodes[n.firstChild], &r = nodes[n.firstChild + 1];
+            EXPECT_EQ(l.firstTriangle, n.firstTriangle);
+            EXPECT_EQ(l.triangleCount + r.triangleCount, n.triangleCount);
+            EXPECT_EQ(r.firstTriangle, l.firstTriangle + l.triangleCount);
+        }
+    }
+    EXPECT_EQ(nodes.front().triangleCount, tree.mesh().triangleCount());
+}
+}  // namespace
+
+TEST(ObbTree, ContainsEveryTriangleOfItsSubtreeOnRandomSoup)
+{
+    test::TestRandom rng(7);
+    std::uniform_real_distribution<double> u(-10, 10), s(-0.5, 0.5);
+    auto mesh = std::make_shared<TriangleMesh>();
+    for (int t = 0; t < 2000; ++t)
+    {
+        const Vec3 c(u(rng), u(rng), u(rng));
+        for (int k = 0; k < 3; ++k)
+            mesh->vertices.push_back(c + Vec3(s(rng), s(rng), s(rng)));
+        mesh->triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
+    }
+    for (unsigned leaf : {1u, 4u})
+        expectContainsSubtree(ObbTree(mesh, leaf));
+}
+
+TEST(ObbTree, ContainsEveryTriangleOnFlatAndHugeMeshes)
+{
+    // Coplanar triangles give zero-thickness boxes; huge coordinates stress the containment margin.
+    for (double scale : {1e-6, 1.0, 1e9})
+    {
+        auto mesh = std::make_shared<TriangleMesh>();
+        for (int i = 0; i < 30; ++i)
+            for (int j = 0; j < 30; ++j)
+                mesh->vertices.push_back(scale * Vec3(i, j, 0.0) + Vec3(3e3 * scale, 0, 0));
+        for (std::uint32_t i = 0; i + 1 < 30; ++i)
+            for (std::uint32_t j = 0; j + 1 < 30; ++j)
+            {
+                mesh->triangles.push_back({i * 30 + j, (i + 1) * 30 + j, i * 30 + j + 1});
+                mesh->triangles.push_back({(i + 1) * 30 + j, (i + 1) * 30 + j + 1, i * 30 + j + 1});
+            }
+        expectContainsSubtree(ObbTree(mesh));
+    }
+}
+
+TEST(ObbTree, ContainsEveryTriangleOnOmplAppMeshes)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha_env-1.5.dae");
+    auto mesh = std::make_shared<TriangleMesh>(loadMesh(cfg, MeshRole::Environment).mesh);
+    expectContainsSubtree(ObbTree(mesh));
+}
+
+TEST(ObbOverlap, NeverMissesOverlapFoundBySampling)
+{
+    // Reference: a shared point found by sampling one box proves overlap; the SAT must agree.
+    test::TestRandom rng(11);
+    std::uniform_real_distribution<double> u(-1, 1), e(0.01, 1.0);
+    int overlaps = 0, disjoint = 0;
+    for (int trial = 0; trial < 3000; ++trial)
+    {
+        Obb a, b;
+        a.axes = test::randomRotation(rng);
+        b.axes = test::randomRotation(rng);
+        a.halfExtents = Vec3(e(rng), e(rng), e(rng));
+        b.halfExtents = Vec3(e(rng), e(rng), e(rng));
+        b.center = Vec3(u(rng), u(rng), u(rng)) * 1.5;
+        const RigidTransform pose{test::randomRotation(rng), Vec3(u(rng), u(rng), u(rng))};
+        bool sampledHit = false;
+        for (int k = 0; k < 400 && !sampledHit; ++k)
+        {
+            const Vec3 local = a.center + a.axes * a.halfExtents.cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
+            sampledHit = b.contains(pose.apply(local));
+        }
+        const bool sat = obbsOverlap(a, pose, b, 1e-12);
+        if (sampledHit)
+            ASSERT_TRUE(sat) << "trial " << trial;
+        (sat ? overlaps : disjoint) += 1;
+    }
+    EXPECT_GT(overlaps, 300);
+    EXPECT_GT(disjoint, 300);
+}

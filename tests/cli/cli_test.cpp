@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The command-line tool as a user runs it: exit statuses, outputs, and clear errors on bad input.
+#include "support/test_support.h"
+
+#include "hybridcd/io/path_file.h"
+#include "hybridcd/query/checker_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+using namespace hcd;
+
+namespace
+{
+struct CliRun
+{
+    int status;
+    std::string output;  // stdout and stderr together
+};
+
+CliRun run(const std::string &args)
+{
+    const std::string command = std::string(HYBRIDCD_CLI) + " " + args + " 2>&1";
+    FILE *pipe = popen(command.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+        out.append(buffer.data(), n);
+    const int raw = pclose(pipe);
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+}
+
+std::string problem3d() { return test::sourcePath("problems/window_3d.cfg"); }
+}  // namespace
+
+TEST(Cli, SolveWritesAValidPath)
+{
+    const std::string out = test::writeTempFile("solution.path", "");
+    const CliRun r = run("solve " + test::sourcePath("problems/corridor_2d.cfg") + " --seed 3 --time 30 --out " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char *field : {"solved: yes", "solve time:", "simplified path length:", "path states:",
+                              "collision checks:", "collision checking time:"})
+        EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/corridor_2d.cfg"));
+    const auto poses = readPoses(out, true);
+    ASSERT_GE(poses.size(), 2u);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const PoseRecord &p : poses)
+        EXPECT_FALSE(reference->collides(poseToTransform(p, true)));
+    EXPECT_NEAR(poses.front().values[0], problem.config.start.x, 1e-9);
+    EXPECT_NEAR(poses.back().values[0], problem.config.goal.x, 1e-9);
+}
+
+TEST(Cli, CheckPrintsOneVerdictPerPose)
+{
+    // Extra trailing columns are ignored; the first pose is the start (free), the second is inside the wall.
+    const std::string states = test::writeTempFile("states.txt", "-26 -10 12 0 0 0 1 extra 5\n0 20 20 0 0 0 1\n\n");
+    for (const char *checker : {"obb", "bruteforce"})
+    {
+        const CliRun r = run("check " + problem3d() + " --states " + states + " --checker " + checker);
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_EQ(r.output.rfind("1\n0\n", 0), 0u) << r.output;
+        EXPECT_NE(r.output.find("ns per check"), std::string::npos);
+    }
+}
+
+TEST(Cli, InspectDescribesMeshesAndHierarchies)
+{
+    const CliRun r = run("inspect " + problem3d());
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char *field : {"triangles:", "vertices:", "closed (watertight): yes", "bounding box:", "OBB tree:", "nodes"})
+        EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
+}
+
+TEST(Cli, BadInputGivesClearErrorsAndNonZeroExit)
+{
+    struct Case
+    {
+        std::string args, expected;
+    };
+    const std::string missingMesh = test::writeTempFile(
+        "missing_mesh.cfg", "[problem]\nrobot = no_such_robot.obj\nstart.x=0\nstart.y=0\ngoal.x=1\ngoal.y=1\n");
+    const std::string malformed = test::writeTempFile("malformed.cfg", "[problem]\nrobot = r.obj\nthis is not a setting\n");
+    const std::string nanPose = test::writeTempFile("nan.path", "0 0 0 0 0 0 1\n1 2 nan 0 0 0 1\n");
+    const Case cases[] = {
+        {"solve " + missingMesh, "missing_mesh.cfg:2: robot mesh"},
+        {"solve " + malformed, "malformed.cfg:3: expected 'key = value'"},
+        {"solve " + problem3d() + " --planner nosuch", "valid"},
+        {"solve " + problem3d() + " --checker nosuch", "valid checkers: obb"},
+        {"check " + problem3d() + " --states " + nanPose, "nan.path:2: 'nan' is not a finite number"},
+        {"check " + problem3d() + " --states /no/such/file", "/no/such/file"},
+        {"solve /no/such/problem.cfg", "/no/such/problem.cfg"},
+        {"frobnicate", "unknown command"},
+        {"solve " + problem3d() + " --time abc", "--time needs a finite number"},
+    };
+    for (const Case &c : cases)
+    {
+        const CliRun r = run(c.args);
+        EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
+    }
+}
+
+TEST(Cli, UnsolvableProblemExitsNonZero)
+{
+    // The goal lies inside the dividing wall: no planner can reach it.
+    std::ifstream in(problem3d());
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string cfg = text.str();
+    const auto replace = [&](const std::string &key, const std::string &value) {
+        const auto at = cfg.find(key);
+        const auto end = cfg.find('\n', at);
+        cfg.replace(at, end - at, key + " = " + value);
+    };
+    replace("goal.x", "0");
+    replace("goal.y", "20");
+    replace("goal.z", "20");
+    const std::string dir = test::sourcePath("problems");
+    const std::string path = dir + "/.unsolvable_test.cfg";
+    std::ofstream(path) << cfg;
+    const CliRun r = run("solve " + path + " --time 1 --out /dev/null");
+    std::remove(path.c_str());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("solved: no"), std::string::npos) << r.output;
+}

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "support/test_support.h"
+
+#include "hybridcd/io/input_error.h"
+#include "hybridcd/io/mesh_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+using namespace hcd;
+
+namespace
+{
+// A tetrahedron with vertex mean (1, 1, 1) in several formats assimp reads.
+const char *kObj = "v 0 0 0\nv 4 0 0\nv 0 4 0\nv 0 0 4\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+const char *kOff = "OFF\n4 4 0\n0 0 0\n4 0 0\n0 4 0\n0 0 4\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+const char *kPly = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n4 0 0\n0 4 0\n0 0 4\n"
+                   "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+std::string stlText()
+{
+    const double v[4][3] = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}};
+    const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    std::ostringstream s;
+    s << "solid tet\n";
+    for (const auto &t : f)
+    {
+        s << " facet normal 0 0 0\n  outer loop\n";
+        for (int k : t)
+            s << "   vertex " << v[k][0] << ' ' << v[k][1] << ' ' << v[k][2] << '\n';
+        s << "  endloop\n endfacet\n";
+    }
+    s << "endsolid tet\n";
+    return s.str();
+}
+}  // namespace
+
+TEST(MeshLoader, ReadsCommonFormats)
+{
+    const std::pair<std::string, std::string> files[] = {
+        {"tet.obj", kObj}, {"tet.off", kOff}, {"tet.ply", kPly}, {"tet.stl", stlText()}};
+    for (const auto &[name, text] : files)
+    {
+        const LoadedMesh m = loadMesh(test::writeTempFile(name, text), MeshRole::Environment);
+        EXPECT_EQ(m.mesh.triangleCount(), 4u) << name;
+        EXPECT_TRUE(isClosed(m.mesh)) << name;
+        EXPECT_EQ(m.mesh.bounds().max, Vec3(4, 4, 4)) << name;
+    }
+}
+
+TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
+{
+    const std::string path = test::writeTempFile("robot.obj", kObj);
+    const LoadedMesh robot = loadMesh(path, MeshRole::Robot3D);
+    EXPECT_EQ(robot.centeringShift, Vec3(1, 1, 1));
+    EXPECT_EQ(robot.mesh.bounds().min, Vec3(-1, -1, -1));
+    const LoadedMesh planar = loadMesh(path, MeshRole::RobotPlanar);
+    EXPECT_EQ(planar.centeringShift, Vec3(1, 1, 0));
+}
+
+TEST(MeshLoader, DropsAndCountsDegenerateTriangles)
+{
+    const LoadedMesh m = loadMesh(
+        test::writeTempFile("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n"), MeshRole::Environment);
+    EXPECT_EQ(m.mesh.triangleCount(), 1u);
+    EXPECT_EQ(m.droppedDegenerate, 1u);
+}
+
+TEST(MeshLoader, BadFilesGiveErrorsNamingTheFile)
+{
+    const std::string missing = "/nonexistent/folder/mesh.dae";
+    try
+    {
+        loadMesh(missing, MeshRole::Environment);
+        FAIL() << "no error for a missing file";
+    }
+    catch (const InputError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find(missing), std::string::npos);
+    }
+    for (const auto &[name, text] : std::vector<std::pair<std::string, std::string>>{
+             {"empty.obj", ""}, {"garbage.dae", "<COLLADA this is not xml"}, {"points.obj", "v 0 0 0\nv 1 1 1\n"}})
+    {
+        const std::string path = test::writeTempFile(name, text);
+        try
+        {
+            loadMesh(path, MeshRole::Environment);
+            FAIL() << "no error for " << name;
+        }
+        catch (const InputError &e)
+        {
+            EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(MeshLoader, MatchesOmplAppGeometryOnCubicles)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(robotPath, "3D/cubicles_robot.dae");
+    const LoadedMesh robot = loadMesh(robotPath, MeshRole::Robot3D);
+    // The robot shift is the float mean of the instanced vertices; the start pose of cubicles.cfg
+    // (-4.96, -40.62, 70.57) was chosen by OMPL.app's authors at that centre.
+    EXPECT_NEAR(robot.centeringShift.x(), -4.96, 0.01);
+    EXPECT_NEAR(robot.centeringShift.y(), -40.62, 0.01);
+    EXPECT_NEAR(robot.centeringShift.z(), 70.57, 0.01);
+    // Geometry is Z-up after the importer's and the nodes' transforms.
+    HYBRIDCD_REQUIRE_OMPLAPP(mazePath, "2D/Maze_planar_env.dae");
+    const BoundingBox maze = loadMesh(mazePath, MeshRole::Environment).mesh.bounds();
+    EXPECT_NEAR(maze.max.x() - maze.min.x(), 110.0, 1e-3);
+    EXPECT_NEAR(maze.max.y() - maze.min.y(), 110.0, 1e-3);
+    EXPECT_LT(maze.max.z() - maze.min.z(), 20.0);
+}

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "support/test_support.h"
+
+#include "hybridcd/io/input_error.h"
+#include "hybridcd/io/problem_config.h"
+#include "hybridcd/io/problem_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace hcd;
+
+namespace
+{
+std::string errorOf(const std::string &cfgText)
+{
+    const std::string path = test::writeTempFile("bad.cfg", cfgText);
+    try
+    {
+        readProblemConfig(path);
+    }
+    catch (const InputError &e)
+    {
+        return e.what();
+    }
+    return "";
+}
+
+const char *kMinimal = "[problem]\nrobot = r.obj\nworld = w.obj\nstart.x = 1\nstart.y = 2\nstart.z = 3\n"
+                       "goal.x = 4\ngoal.y = 5\ngoal.z = 6\n";
+}  // namespace
+
+TEST(ProblemConfig, ReadsEveryOmplAppProblemOrNamesTheMissingMesh)
+{
+    const std::string root = test::omplappResources();
+    if (root.empty())
+        GTEST_SKIP() << "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES";
+    int loaded = 0, failed = 0;
+    for (const char *dim : {"2D", "3D"})
+        for (const auto &entry : std::filesystem::directory_iterator(root + "/" + dim))
+        {
+            if (entry.path().extension() != ".cfg")
+                continue;
+            const std::string cfgPath = entry.path().string();
+            const ProblemConfig cfg = readProblemConfig(cfgPath);
+            const bool meshesExist = std::filesystem::exists(cfg.robotMesh) &&
+                                     (cfg.worldMesh.empty() || std::filesystem::exists(cfg.worldMesh));
+            try
+            {
+                const LoadedProblem p = loadProblem(cfgPath);
+                EXPECT_TRUE(meshesExist) << cfgPath;
+                EXPECT_GT(p.robot.mesh.triangleCount(), 0u) << cfgPath;
+                EXPECT_GT(p.world.mesh.triangleCount(), 0u) << cfgPath;
+                EXPECT_EQ(cfg.planar, std::string(dim) == "2D") << cfgPath;
+                ++loaded;
+            }
+            catch (const InputError &e)
+            {
+                // Only a missing mesh may fail, and the message must name the .cfg line and the file.
+                EXPECT_FALSE(meshesExist) << cfgPath << ": " << e.what();
+                const std::string missing = std::filesystem::exists(cfg.robotMesh) ? cfg.worldMesh : cfg.robotMesh;
+                const std::string message = e.what();
+                EXPECT_NE(message.find(cfgPath + ":"), std::string::npos) << message;
+                EXPECT_NE(message.find(missing), std::string::npos) << message;
+                EXPECT_NE(message.find("cannot open mesh file"), std::string::npos) << message;
+                ++failed;
+            }
+        }
+    EXPECT_GE(loaded, 20);
+    EXPECT_GE(failed, 1);  // pipedream.cfg names a world mesh that is not shipped
+    std::cout << "[ problems ] " << loaded << " loaded, " << failed << " name a missing mesh\n";
+}
+
+TEST(ProblemConfig, ParsesSectionsPlannersAndNames)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(path, "3D/cubicles_opt.cfg");
+    const ProblemConfig cfg = readProblemConfig(path);
+    EXPECT_EQ(cfg.name, "cubicles_opt");
+    EXPECT_EQ(cfg.objective, "length");
+    ASSERT_TRUE(cfg.objectiveThreshold.has_value());
+    EXPECT_EQ(*cfg.objectiveThreshold, 0.0);
+    EXPECT_FALSE(cfg.planar);
+    EXPECT_DOUBLE_EQ(cfg.start.x, -4.96);
+    ASSERT_TRUE(cfg.volumeZ.has_value());
+    EXPECT_DOUBLE_EQ(cfg.volumeZ->second, 101.0);
+    EXPECT_DOUBLE_EQ(cfg.benchmark.timeLimit, 300.0);
+    EXPECT_EQ(cfg.benchmark.runCount, 50u);
+    // Two aps planners, each refined by the lines after it.
+    std::vector<const PlannerRequest *> aps;
+    for (const PlannerRequest &r : cfg.planners)
+        if (r.type == "aps")
+            aps.push_back(&r);
+    ASSERT_EQ(aps.size(), 2u);
+    EXPECT_EQ(aps[0]->displayName, "APS1");
+    EXPECT_EQ(aps[1]->displayName, "APS4");
+    ASSERT_EQ(aps[1]->parameters.size(), 1u);
+    EXPECT_EQ(aps[1]->parameters[0], std::make_pair(std::string("num_planners"), std::string("4")));
+}
+
+TEST(ProblemConfig, PlanarProblemAndSampler)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
+    EXPECT_TRUE(readProblemConfig(maze).planar);
+    HYBRIDCD_REQUIRE_OMPLAPP(alpha, "3D/alpha-1.5.cfg");
+    const ProblemConfig cfg = readProblemConfig(alpha);
+    EXPECT_EQ(cfg.sampler, "obstacle_based");
+    ASSERT_EQ(cfg.planners.size(), 4u);
+    EXPECT_EQ(cfg.planners[2].type, "rrt");
+    EXPECT_EQ(cfg.planners[2].parameters.at(0).second, "10");
+}
+
+TEST(ProblemConfig, ErrorsNameFileAndLine)
+{
+    EXPECT_NE(errorOf(std::string(kMinimal) + "this line has no equals sign\n").find("bad.cfg:10: expected 'key = value'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(kMinimal) + "start.theta = abc\n").find("bad.cfg:10: 'start.theta' needs a finite number"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(kMinimal) + "start.theta = nan\n").find(":10:"), std::string::npos);
+    EXPECT_NE(errorOf(std::string(kMinimal) + "[planner]\nrrt.range=3\n").find("bad.cfg:11: setting for planner 'rrt'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(kMinimal) + "[nonsense]\n").find("bad.cfg:10: unknown section"), std::string::npos);
+    EXPECT_NE(errorOf("[problem]\nworld = w.obj\n").find("lacks the required key 'robot'"), std::string::npos);
+    EXPECT_NE(errorOf("robot = r.obj\n").find("bad.cfg:1: 'robot' appears before any [section]"), std::string::npos);
+    EXPECT_NE(errorOf(std::string(kMinimal) + "[benchmark]\nrun_count = 2.5\n").find("bad.cfg:11: run_count"),
+              std::string::npos);
+    EXPECT_EQ(errorOf(kMinimal), "");
+}
+
+TEST(ProblemConfig, MissingFileIsAnInputError)
+{
+    EXPECT_THROW(readProblemConfig("/nonexistent/problem.cfg"), InputError);
+}

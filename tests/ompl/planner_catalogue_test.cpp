@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "planners/planner_catalogue.h"
+
+#include <ompl/base/spaces/SE3StateSpace.h>
+
+#include <gtest/gtest.h>
+
+using namespace hcd;
+
+namespace
+{
+ompl::base::SpaceInformationPtr se3()
+{
+    auto space = std::make_shared<ompl::base::SE3StateSpace>();
+    ompl::base::RealVectorBounds b(3);
+    b.setLow(-1);
+    b.setHigh(1);
+    space->setBounds(b);
+    auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+    si->setStateValidityChecker([](const ompl::base::State *) { return true; });
+    si->setup();
+    return si;
+}
+}  // namespace
+
+TEST(PlannerCatalogue, EveryNamedPlannerConstructs)
+{
+    const auto si = se3();
+    const auto names = plannerNames();
+    for (const char *expected : {"rrtconnect", "rrt", "rrtstar", "prm", "prmstar", "lazyprm", "lazyprmstar", "kpiece",
+                                 "bkpiece", "lbkpiece", "est", "biest", "sbl", "stride", "pdst", "fmt", "bfmt",
+                                 "bitstar", "lbtrrt", "trrt", "spars", "spars2", "cforest", "aps"})
+        EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+    for (const std::string &n : names)
+    {
+        const auto planner = makePlanner({n, "", {}}, si);
+        ASSERT_TRUE(planner) << n;
+    }
+}
+
+TEST(PlannerCatalogue, AppliesNamesAndParameters)
+{
+    const auto planner = makePlanner({"RRT", "fast rrt", {{"range", "10"}, {"goal_bias", "0.2"}}}, se3());
+    EXPECT_EQ(planner->getName(), "fast rrt");
+    std::string value;
+    ASSERT_TRUE(planner->params().getParam("range", value));
+    EXPECT_EQ(std::stod(value), 10.0);
+}
+
+TEST(PlannerCatalogue, UnknownNamesListTheValidOnes)
+{
+    try
+    {
+        makePlanner({"nosuchplanner", "", {}}, se3());
+        FAIL();
+    }
+    catch (const std::invalid_argument &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("rrtconnect"), std::string::npos) << e.what();
+    }
+    try
+    {
+        makePlanner({"rrt", "", {{"no_such_param", "1"}}}, se3());
+        FAIL();
+    }
+    catch (const std::invalid_argument &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("range"), std::string::npos) << e.what();
+    }
+}

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Every checker must give the brute-force answer: on OMPL.app problems, on the sample solution
+// paths (all collision-free), and on adversarial scenes (exact touching, thin walls, extreme scales).
+#include "support/test_support.h"
+
+#include "hybridcd/io/path_file.h"
+#include "hybridcd/query/checker_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+using namespace hcd;
+
+namespace
+{
+struct Agreement
+{
+    std::size_t colliding = 0, free = 0, disagreements = 0;
+};
+
+Agreement compare(const CollisionChecker &fast, const CollisionChecker &reference,
+                  const std::vector<RigidTransform> &poses)
+{
+    Agreement a;
+    for (const RigidTransform &pose : poses)
+    {
+        const bool expected = reference.collides(pose);
+        (expected ? a.colliding : a.free) += 1;
+        if (fast.collides(pose) != expected)
+            ++a.disagreements;
+    }
+    return a;
+}
+
+void checkProblem(const std::string &cfg, std::size_t poseCount)
+{
+    const LoadedProblem problem = loadProblem(cfg);
+    test::TestRandom rng(2024);
+    const auto poses = test::randomPoses(problem, poseCount, rng);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const std::string &name : checkerNames())
+    {
+        if (name == "bruteforce")
+            continue;
+        const auto checker = makeChecker(name, problem.scene);
+        const Agreement a = compare(*checker, *reference, poses);
+        EXPECT_EQ(a.disagreements, 0u) << name << " on " << cfg;
+        // Both outcomes well represented, or the comparison proves little.
+        EXPECT_GT(a.colliding, poseCount / 10) << cfg;
+        EXPECT_GT(a.free, poseCount / 10) << cfg;
+        std::cout << "[ agreement ] " << name << " vs bruteforce on " << std::filesystem::path(cfg).filename().string()
+                  << ": " << poseCount << " poses, " << a.colliding << " colliding, " << a.free << " free, "
+                  << a.disagreements << " disagreements\n";
+    }
+}
+
+CollisionScene sceneOf(TriangleMesh robot, TriangleMesh environment)
+{
+    CollisionScene s;
+    s.robot = std::make_shared<const TriangleMesh>(std::move(robot));
+    s.environment = std::make_shared<const TriangleMesh>(std::move(environment));
+    return s;
+}
+}  // namespace
+
+TEST(CheckerAgreement, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); checkProblem(cfg, 10000); }
+TEST(CheckerAgreement, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); checkProblem(cfg, 10000); }
+TEST(CheckerAgreement, Alpha15) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg"); checkProblem(cfg, 10000); }
+TEST(CheckerAgreement, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); checkProblem(cfg, 10000); }
+TEST(CheckerAgreement, ProjectProblems)
+{
+    checkProblem(test::sourcePath("problems/window_3d.cfg"), 3000);
+    checkProblem(test::sourcePath("problems/corridor_2d.cfg"), 3000);
+}
+
+TEST(CheckerAgreement, SampleSolutionPathsAreCollisionFree)
+{
+    const std::string root = test::omplappResources();
+    if (root.empty())
+        GTEST_SKIP() << "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES";
+    int paths = 0;
+    for (const char *dim : {"2D", "3D"})
+        for (const auto &entry : std::filesystem::directory_iterator(root + "/" + dim))
+        {
+            if (entry.path().extension() != ".path")
+                continue;
+            const std::string cfg = entry.path().parent_path().string() + "/" + entry.path().stem().string() + ".cfg";
+            if (!std::filesystem::exists(cfg))
+                continue;
+            LoadedProblem problem;
+            try
+            {
+                problem = loadProblem(cfg);
+            }
+            catch (const std::exception &)
+            {
+                continue;  // pipedream's world mesh is not shipped
+            }
+            const auto poses = readPoses(entry.path().string(), problem.config.planar);
+            for (const std::string &name : checkerNames())
+            {
+                if (name == "bruteforce" && problem.world.mesh.triangleCount() > 20000)
+                    continue;  // the O(pairs) reference is too slow on the largest meshes here
+                const auto checker = makeChecker(name, problem.scene);
+                for (const PoseRecord &p : poses)
+                    EXPECT_FALSE(checker->collides(poseToTransform(p, problem.config.planar)))
+                        << name << " calls a state of " << entry.path() << " line " << p.line << " colliding";
+            }
+            ++paths;
+        }
+    EXPECT_GE(paths, 10);
+}
+
+TEST(CheckerAgreement, ExactTouchingCountsAsCollision)
+{
+    // Unit cubes: a face-to-face contact is a collision, one ulp of gap is not.
+    const CollisionScene scene = sceneOf(test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)),
+                                         test::boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1)));
+    for (const std::string &name : checkerNames())
+    {
+        const auto checker = makeChecker(name, scene);
+        const double touch = -0.5, gap = std::nextafter(-0.5, -1.0);
+        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(touch, 0.5, 0.5)})) << name;  // faces touch
+        EXPECT_FALSE(checker->collides({Mat3::Identity(), Vec3(gap, 0.5, 0.5)})) << name;
+        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(-0.5, -0.5, -0.5)})) << name;  // corner to corner
+        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(0.5, 0.5, 0.5)})) << name;    // coplanar faces overlap
+        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(NAN, 0, 0)})) << name;        // never "free" for NaN
+    }
+}
+
+TEST(CheckerAgreement, ThinWallsAndExtremeScales)
+{
+    // A zero-thickness wall (two triangles) and a long thin robot, at several scales.
+    for (double scale : {1e-7, 1.0, 1e7})
+    {
+        TriangleMesh wall;
+        wall.vertices = {scale * Vec3(0, -1, -1), scale * Vec3(0, 1, -1), scale * Vec3(0, 1, 1), scale * Vec3(0, -1, 1)};
+        wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+        const CollisionScene scene =
+            sceneOf(test::boxMesh(scale * Vec3(-1, -0.01, -0.01), scale * Vec3(1, 0.01, 0.01)), wall);
+        const auto reference = makeChecker("bruteforce", scene);
+        test::TestRandom rng(5);
+        std::uniform_real_distribution<double> u(-1.5, 1.5);
+        std::vector<RigidTransform> poses;
+        for (int i = 0; i < 3000; ++i)
+            poses.push_back({test::randomRotation(rng), scale * Vec3(u(rng), u(rng), u(rng))});
+        for (const std::string &name : checkerNames())
+        {
+            const Agreement a = compare(*makeChecker(name, scene), *reference, poses);
+            EXPECT_EQ(a.disagreements, 0u) << name << " at scale " << scale;
+            EXPECT_GT(a.colliding, 300u);
+            EXPECT_GT(a.free, 300u);
+        }
+    }
+}
