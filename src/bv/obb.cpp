@@ -92,4 +92,18 @@ bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, d
     }
     return true;
 }
+
+double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance)
+{
+    const Mat3 r = b.axes.transpose() * (worldFromA.rotation * a.axes);
+    const Vec3 t = b.axes.transpose() * (worldFromA.apply(a.center) - b.center);
+    const Mat3 absR = r.cwiseAbs();
+    double gap = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+        gap = std::max(gap, std::fabs(t[i]) - b.halfExtents[i] - absR.row(i).dot(a.halfExtents));
+        gap = std::max(gap, std::fabs(t.dot(r.col(i))) - a.halfExtents[i] - absR.col(i).dot(b.halfExtents));
+    }
+    return std::max(0.0, gap - tolerance);
+}
 }  // namespace hcd

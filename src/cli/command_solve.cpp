@@ -43,7 +43,7 @@ std::vector<std::pair<std::string, std::string>> parseParams(const std::string &
 
 int runSolve(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"planner", "time", "seed", "checker", "out", "param"}, {"verbose"});
+    const CommandLine cl(args, {"planner", "time", "seed", "checker", "out", "param", "motion"}, {"verbose"});
     if (cl.text("planner", "") == "help")
     {
         for (const std::string &n : plannerNames())
@@ -65,7 +65,7 @@ int runSolve(const std::vector<std::string> &args)
     std::shared_ptr<const CollisionChecker> checker = makeChecker(checkerName, problem.scene);
     const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
 
-    PlanningProblem planning = makePlanningProblem(problem, checker);
+    PlanningProblem planning = makePlanningProblem(problem, checker, parseMotionCheck(cl.text("motion", "continuous")));
     PlannerRequest request{cl.text("planner", "rrtconnect"), "", parseParams(cl.text("param", ""))};
     planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
@@ -84,6 +84,7 @@ int runSolve(const std::vector<std::string> &args)
     std::cout << "problem: " << problem.config.name << " (" << (problem.config.planar ? "SE2" : "SE3") << ")\n"
               << "checker: " << checker->name() << " (built in " << buildSeconds * 1e3 << " ms)\n"
               << "planner: " << planning.setup->getPlanner()->getName() << '\n'
+              << "motion check: " << cl.text("motion", "continuous") << '\n'
               << "solved: " << (solved ? "yes" : "no") << " (" << status.asString() << ")\n"
               << "solve time: " << solveSeconds << " s\n"
               << "collision checks: " << checks << '\n'

@@ -15,7 +15,8 @@ const char *kUsage = R"(usage: hybridcd COMMAND PROBLEM.cfg [options]
 
 commands:
   solve    plan a path: [--planner NAME] [--time SECONDS] [--seed N] [--checker NAME]
-           [--out PATH_FILE] [--param KEY=VALUE,...] [--verbose]
+           [--out PATH_FILE] [--param KEY=VALUE,...] [--motion continuous|discrete]
+           [--verbose]
   check    classify poses: --states FILE [--checker NAME]   (prints 1 free / 0 colliding per pose)
   inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/ompl/planning_problem.h"
 
+#include "hybridcd/ompl/continuous_motion_validator.h"
+
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/MechanicalWorkOptimizationObjective.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
@@ -13,6 +15,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace ob = ompl::base;
 
@@ -94,15 +97,32 @@ std::vector<double> stateToPoseValues(const ob::State *state, bool planar)
     return {s->getX(), s->getY(), s->getZ(), q.x, q.y, q.z, q.w};
 }
 
-PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker)
+MotionCheck parseMotionCheck(const std::string &name)
+{
+    if (name == "continuous")
+        return MotionCheck::Continuous;
+    if (name == "discrete")
+        return MotionCheck::Discrete;
+    throw std::invalid_argument("unknown motion check '" + name + "'; expected continuous or discrete");
+}
+
+PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker,
+                                    MotionCheck motion)
 {
     const ProblemConfig &cfg = problem.config;
     PlanningProblem out;
     out.planar = cfg.planar;
     out.setup = std::make_shared<ompl::geometric::SimpleSetup>(makeStateSpace(problem));
     const ob::SpaceInformationPtr &si = out.setup->getSpaceInformation();
-    out.validity = std::make_shared<StateValidityChecker>(si, std::move(checker), cfg.planar);
+    out.validity = std::make_shared<StateValidityChecker>(si, checker, cfg.planar);
     out.setup->setStateValidityChecker(out.validity);
+    if (motion == MotionCheck::Continuous)
+    {
+        const BoundingBox box = problem.world.mesh.bounds();
+        const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
+        si->setMotionValidator(std::make_shared<ContinuousMotionValidator>(
+            si, out.validity, problem.robot.mesh.radiusAboutOrigin(), scale));
+    }
 
     ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
     configPoseToState(cfg.start, cfg.planar, start.get());

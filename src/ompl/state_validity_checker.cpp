@@ -25,6 +25,18 @@ StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr
                                            std::shared_ptr<const CollisionChecker> checker, bool planar)
     : ompl::base::StateValidityChecker(si), checker_(std::move(checker)), planar_(planar)
 {
+    specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
+}
+
+template <typename Query>
+auto StateValidityChecker::timed(const Query &query) const
+{
+    const auto start = std::chrono::steady_clock::now();
+    const auto result = query();
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start);
+    checks_.fetch_add(1, std::memory_order_relaxed);
+    nanoseconds_.fetch_add(std::uint64_t(ns.count()), std::memory_order_relaxed);
+    return result;
 }
 
 bool StateValidityChecker::isValid(const ompl::base::State *state) const
@@ -34,12 +46,23 @@ bool StateValidityChecker::isValid(const ompl::base::State *state) const
 
 bool StateValidityChecker::collisionFree(const ompl::base::State *state) const
 {
-    const auto start = std::chrono::steady_clock::now();
-    const bool free = !checker_->collides(poseOfState(state, planar_));
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start);
-    checks_.fetch_add(1, std::memory_order_relaxed);
-    nanoseconds_.fetch_add(std::uint64_t(ns.count()), std::memory_order_relaxed);
-    return free;
+    return !poseCollides(poseOfState(state, planar_));
+}
+
+double StateValidityChecker::clearance(const ompl::base::State *state) const
+{
+    const RigidTransform pose = poseOfState(state, planar_);
+    return timed([&] { return checker_->distance(pose); });
+}
+
+bool StateValidityChecker::poseCollides(const RigidTransform &worldFromRobot) const
+{
+    return timed([&] { return checker_->collides(worldFromRobot); });
+}
+
+bool StateValidityChecker::poseWithinDistance(const RigidTransform &worldFromRobot, double delta) const
+{
+    return timed([&] { return checker_->withinDistance(worldFromRobot, delta); });
 }
 
 void StateValidityChecker::resetCounters()

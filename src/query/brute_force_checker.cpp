@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/query/brute_force_checker.h"
 
+#include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 
 #include <algorithm>
@@ -69,5 +70,24 @@ bool BruteForceChecker::collides(const RigidTransform &worldFromRobot, QueryStat
     if (stats)
         stats->primitiveTests += tests;
     return hit;
+}
+
+double BruteForceChecker::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
+{
+    if (!worldFromRobot.isFinite())
+        return 0.0;
+    const TriangleMesh &robot = *scene_.robot, &env = *scene_.environment;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < robot.triangleCount() && best > 0.0; ++i)
+    {
+        const Vec3 a0 = worldFromRobot.apply(robot.corner(i, 0));
+        const Vec3 a1 = worldFromRobot.apply(robot.corner(i, 1));
+        const Vec3 a2 = worldFromRobot.apply(robot.corner(i, 2));
+        for (std::size_t j = 0; j < env.triangleCount() && best > 0.0; ++j)
+            best = std::min(best, triangleDistance(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2)));
+    }
+    if (stats)
+        stats->primitiveTests += robot.triangleCount() * env.triangleCount();
+    return best;
 }
 }  // namespace hcd

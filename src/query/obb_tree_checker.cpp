@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/query/obb_tree_checker.h"
 
+#include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
+
+#include <cmath>
 #include "hybridcd/query/traversal_stack.h"
 
 namespace hcd
@@ -16,6 +19,16 @@ ObbTreeChecker::ObbTreeChecker(CollisionScene scene, unsigned maxLeafTriangles)
 }
 
 bool ObbTreeChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
+{
+    return anyPairWithin(worldFromRobot, 0.0, stats);
+}
+
+bool ObbTreeChecker::withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
+{
+    return anyPairWithin(worldFromRobot, std::max(0.0, delta), stats);
+}
+
+bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -40,7 +53,8 @@ bool ObbTreeChecker::collides(const RigidTransform &worldFromRobot, QueryStats *
         const ObbTree::Node &rn = rNodes[pair.robot];
         const ObbTree::Node &en = eNodes[pair.environment];
         ++boxTests;
-        if (!obbsOverlap(rn.box, worldFromRobot, en.box, tolerance))
+        // Growing the tolerance by delta keeps every pair closer than delta (axes have length <= 1).
+        if (!obbsOverlap(rn.box, worldFromRobot, en.box, tolerance + delta))
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
@@ -54,7 +68,9 @@ bool ObbTreeChecker::collides(const RigidTransform &worldFromRobot, QueryStats *
                 {
                     const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
                     ++triangleTests;
-                    if (trianglesIntersect(a0, a1, a2, env.corner(et, 0), env.corner(et, 1), env.corner(et, 2)))
+                    const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
+                    if (delta == 0.0 ? trianglesIntersect(a0, a1, a2, b0, b1, b2)
+                                     : triangleDistance(a0, a1, a2, b0, b1, b2) <= delta * (1.0 + 1e-9) + tolerance)
                     {
                         hit = true;
                         break;
@@ -83,6 +99,75 @@ bool ObbTreeChecker::collides(const RigidTransform &worldFromRobot, QueryStats *
         stats->primitiveTests += triangleTests;
     }
     return hit;
+}
+
+double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
+{
+    if (!worldFromRobot.isFinite())
+        return 0.0;
+    if (robotTree_.empty() || environmentTree_.empty())
+        return std::numeric_limits<double>::infinity();
+    if (collides(worldFromRobot, stats))
+        return 0.0;
+
+    // Branch and bound: descend pairs whose box lower bound is below the best distance found yet,
+    // nearer pair first, so the bound tightens early.
+    const double tolerance =
+        1e-10 * (1.0 + worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
+    const auto &rNodes = robotTree_.nodes();
+    const auto &eNodes = environmentTree_.nodes();
+    const TriangleMesh &robot = *scene_.robot, &env = *scene_.environment;
+    double best = std::numeric_limits<double>::infinity();
+    std::uint64_t boxTests = 0, triangleTests = 0;
+    TraversalStack stack;
+    stack.push({0, 0});
+    while (!stack.empty())
+    {
+        const NodePair pair = stack.pop();
+        const ObbTree::Node &rn = rNodes[pair.robot];
+        const ObbTree::Node &en = eNodes[pair.environment];
+        ++boxTests;
+        if (obbDistanceLowerBound(rn.box, worldFromRobot, en.box, tolerance) >= best)
+            continue;
+        if (rn.isLeaf() && en.isLeaf())
+        {
+            for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
+            {
+                const std::uint32_t rt = robotTree_.triangleOrder()[rn.firstTriangle + i];
+                const Vec3 a0 = worldFromRobot.apply(robot.corner(rt, 0));
+                const Vec3 a1 = worldFromRobot.apply(robot.corner(rt, 1));
+                const Vec3 a2 = worldFromRobot.apply(robot.corner(rt, 2));
+                for (std::uint32_t j = 0; j < en.triangleCount; ++j)
+                {
+                    const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
+                    ++triangleTests;
+                    best = std::min(best, triangleDistance(a0, a1, a2, env.corner(et, 0), env.corner(et, 1),
+                                                           env.corner(et, 2)));
+                }
+            }
+            continue;
+        }
+        const bool splitRobot =
+            en.isLeaf() || (!rn.isLeaf() && rn.box.halfExtents.maxCoeff() >= en.box.halfExtents.maxCoeff());
+        NodePair first = splitRobot ? NodePair{std::uint32_t(rn.firstChild), pair.environment}
+                                    : NodePair{pair.robot, std::uint32_t(en.firstChild)};
+        NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
+                                     : NodePair{pair.robot, std::uint32_t(en.firstChild + 1)};
+        const double lbFirst = obbDistanceLowerBound(rNodes[first.robot].box, worldFromRobot,
+                                                     eNodes[first.environment].box, tolerance);
+        const double lbSecond = obbDistanceLowerBound(rNodes[second.robot].box, worldFromRobot,
+                                                      eNodes[second.environment].box, tolerance);
+        if (lbFirst > lbSecond)
+            std::swap(first, second);
+        stack.push(second);  // popped after the nearer one
+        stack.push(first);
+    }
+    if (stats)
+    {
+        stats->boundingVolumeTests += boxTests;
+        stats->primitiveTests += triangleTests;
+    }
+    return best;
 }
 
 std::vector<HierarchyReport> ObbTreeChecker::hierarchies() const

@@ -33,4 +33,8 @@ struct Obb
 /// given in world. Conservative: it reports disjoint only when some axis separates the boxes by
 /// more than `tolerance`, which callers set to cover rounding at their coordinates' magnitude.
 bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance);
+
+/// A lower bound on the distance between box `a` (mapped by `worldFromA`) and box `b`: the largest
+/// gap along the six face normals, less `tolerance`, and never below zero.
+double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance);
 }  // namespace hcd

@@ -13,6 +13,16 @@
 
 namespace hcd
 {
+/// How motions between states are validated.
+enum class MotionCheck
+{
+    Continuous,  ///< ContinuousMotionValidator: never accepts a motion that touches an obstacle
+    Discrete,    ///< OMPL's DiscreteMotionValidator at OMPL's default resolution (may tunnel)
+};
+
+/// Parses "continuous" or "discrete"; throws std::invalid_argument otherwise.
+MotionCheck parseMotionCheck(const std::string &name);
+
 struct PlanningProblem
 {
     std::shared_ptr<ompl::geometric::SimpleSetup> setup;
@@ -26,7 +36,8 @@ ompl::base::StateSpacePtr makeStateSpace(const LoadedProblem &problem);
 
 /// SimpleSetup with the space, start, goal, validity checker, objective and valid-state sampler
 /// the .cfg asks for. The planner is left for the caller to set.
-PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker);
+PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker,
+                                    MotionCheck motion = MotionCheck::Continuous);
 
 /// The state of a .cfg pose (3D poses are axis-angle, planar ones yaw).
 void configPoseToState(const ConfigPose &pose, bool planar, ompl::base::State *state);

@@ -28,6 +28,13 @@ public:
     /// Collision test alone, without the bounds (still counted and timed).
     bool collisionFree(const ompl::base::State *state) const;
 
+    /// Distance to the environment (0 in contact), counted and timed as a check.
+    double clearance(const ompl::base::State *state) const override;
+
+    /// Counted and timed forms of the checker's queries for a pose, for the motion validator.
+    bool poseCollides(const RigidTransform &worldFromRobot) const;
+    bool poseWithinDistance(const RigidTransform &worldFromRobot, double delta) const;
+
     const CollisionChecker &checker() const { return *checker_; }
     bool planar() const { return planar_; }
 
@@ -38,6 +45,9 @@ public:
     void resetCounters();
 
 private:
+    template <typename Query>
+    auto timed(const Query &query) const;
+
     std::shared_ptr<const CollisionChecker> checker_;
     bool planar_;
     mutable std::atomic<std::uint64_t> checks_{0};

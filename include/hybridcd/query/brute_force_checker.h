@@ -16,6 +16,7 @@ public:
     explicit BruteForceChecker(CollisionScene scene);
     std::string name() const override { return "bruteforce"; }
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
 
 private:
     struct TriangleBox

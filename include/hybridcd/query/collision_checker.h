@@ -42,6 +42,18 @@ public:
     /// A non-finite pose is reported as a collision (it can never be shown to be free).
     virtual bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const = 0;
 
+    /// Distance between the robot placed by `worldFromRobot` and the environment: 0 when they touch
+    /// (decided exactly), otherwise the smallest triangle-to-triangle distance (floating point,
+    /// relative error of a few ulps). Infinite when either mesh is empty; 0 for a non-finite pose.
+    virtual double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const = 0;
+
+    /// Proximity: true when the distance may be at most `delta` (so false proves distance > delta).
+    /// Touching gives true for any delta >= 0. Hierarchical checkers override this with an early exit.
+    virtual bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const
+    {
+        return distance(worldFromRobot, stats) <= delta;
+    }
+
     /// Hierarchies built for this checker (empty for brute force).
     virtual std::vector<HierarchyReport> hierarchies() const { return {}; }
 };

@@ -16,9 +16,14 @@ public:
     explicit ObbTreeChecker(CollisionScene scene, unsigned maxLeafTriangles = 1);
     std::string name() const override { return "obb"; }
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
     std::vector<HierarchyReport> hierarchies() const override;
 
 private:
+    /// Collision (delta = 0, exact triangle test) or proximity (delta > 0) with early exit.
+    bool anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const;
+
     CollisionScene scene_;
     ObbTree robotTree_;
     ObbTree environmentTree_;

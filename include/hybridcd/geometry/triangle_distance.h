@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Euclidean distances between points, segments and triangles (closed sets).
+#pragma once
+
+#include "hybridcd/geometry/rigid_transform.h"
+
+namespace hcd
+{
+/// Closest point to `p` on the closed triangle (a, b, c) (Voronoi-region walk; handles degenerate triangles).
+Vec3 closestPointOnTriangle(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c);
+
+/// Squared distance between the closed segments p0p1 and q0q1 (zero-length segments allowed).
+double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1);
+
+/// Distance between two closed triangles: 0 when they intersect (decided exactly), otherwise the
+/// smallest of the vertex-to-triangle and edge-to-edge distances, in floating point (relative error a
+/// few ulps of the coordinates' magnitude).
+double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2);
+}  // namespace hcd

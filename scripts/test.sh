@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# Installs, builds (with tests) and runs the whole suite with CTest.
+# OMPL.app's problems are read from ../shared/omplapp-resources, or $HYBRIDCD_OMPLAPP_RESOURCES;
+# tests that need them skip with a message when they are absent.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bash "$root/scripts/build.sh" -DHYBRIDCD_BUILD_TESTS=ON
+cd "$root/build"
+ctest --output-on-failure -j"$(nproc)" --timeout 900

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/geometry/triangle_distance.h"
+
+#include "hybridcd/geometry/triangle_intersection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hcd
+{
+Vec3 closestPointOnTriangle(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0.0 && d2 <= 0.0)
+        return a;
+    const Vec3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0.0 && d4 <= d3)
+        return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0)
+        return a + (d1 / (d1 - d3)) * ab;
+    const Vec3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0.0 && d5 <= d6)
+        return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0)
+        return a + (d2 / (d2 - d6)) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
+        return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    const double sum = va + vb + vc;
+    if (!(sum > 0.0))
+    {
+        // Degenerate triangle: the closest point lies on one of its edges.
+        Vec3 best = a;
+        double bestD = (p - a).squaredNorm();
+        for (const auto &[u, v] : {std::pair<const Vec3 *, const Vec3 *>{&a, &b}, {&b, &c}, {&c, &a}})
+        {
+            const Vec3 e = *v - *u;
+            const double len = e.squaredNorm();
+            const double t = len > 0.0 ? std::clamp((p - *u).dot(e) / len, 0.0, 1.0) : 0.0;
+            const Vec3 q = *u + t * e;
+            if ((p - q).squaredNorm() < bestD)
+            {
+                bestD = (p - q).squaredNorm();
+                best = q;
+            }
+        }
+        return best;
+    }
+    const double denom = 1.0 / sum;
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1)
+{
+    const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+    double s = 0.0, t = 0.0;
+    if (a <= 0.0 && e <= 0.0)
+        return r.squaredNorm();
+    if (a <= 0.0)
+        t = std::clamp(f / e, 0.0, 1.0);
+    else
+    {
+        const double c = d1.dot(r);
+        if (e <= 0.0)
+            s = std::clamp(-c / a, 0.0, 1.0);
+        else
+        {
+            const double b = d1.dot(d2), denom = a * e - b * b;
+            s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+            t = (b * s + f) / e;
+            if (t < 0.0)
+            {
+                t = 0.0;
+                s = std::clamp(-c / a, 0.0, 1.0);
+            }
+            else if (t > 1.0)
+            {
+                t = 1.0;
+                s = std::clamp((b - c) / a, 0.0, 1.0);
+            }
+        }
+    }
+    return ((p0 + s * d1) - (q0 + t * d2)).squaredNorm();
+}
+
+double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
+{
+    if (trianglesIntersect(a0, a1, a2, b0, b1, b2))
+        return 0.0;
+    // Disjoint closed triangles attain their distance at a vertex of one or between two edges.
+    double best = std::numeric_limits<double>::infinity();
+    const Vec3 *a[3] = {&a0, &a1, &a2}, *b[3] = {&b0, &b1, &b2};
+    for (int i = 0; i < 3; ++i)
+    {
+        best = std::min(best, (*a[i] - closestPointOnTriangle(*a[i], b0, b1, b2)).squaredNorm());
+        best = std::min(best, (*b[i] - closestPointOnTriangle(*b[i], a0, a1, a2)).squaredNorm());
+        for (int j = 0; j < 3; ++j)
+            best = std::min(best, segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
+    }
+    return std::sqrt(best);
+}
+}  // namespace hcd

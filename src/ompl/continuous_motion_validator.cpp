@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/ompl/continuous_motion_validator.h"
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace hcd
+{
+namespace
+{
+// Rotation angle of R1^T R2 in [0, pi]: the angle OMPL's shortest-path interpolation sweeps.
+double rotationAngle(const Mat3 &r1, const Mat3 &r2)
+{
+    const double c = 0.5 * ((r1.transpose() * r2).trace() - 1.0);
+    return std::acos(std::clamp(c, -1.0, 1.0));
+}
+
+constexpr std::size_t kMaxQueries = 100000;  // beyond this a motion is refused rather than certified
+}  // namespace
+
+ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInformationPtr &si,
+                                                     std::shared_ptr<const StateValidityChecker> validity,
+                                                     double robotRadius, double sceneScale)
+    : ompl::base::MotionValidator(si),
+      validity_(std::move(validity)),
+      // Margins cover rounding in the bound: the radius and the angle are computed in floating point.
+      robotRadius_(robotRadius * (1.0 + 1e-9) + 1e-12 * sceneScale),
+      minimumClearance_(1e-7 * std::max(sceneScale, 1e-300))
+{
+}
+
+bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
+{
+    return check(s1, s2, nullptr, nullptr);
+}
+
+bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
+                                            std::pair<ompl::base::State *, double> &lastValid) const
+{
+    return check(s1, s2, lastValid.first, &lastValid.second);
+}
+
+bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::base::State *s2,
+                                      ompl::base::State *lastValidState, double *lastValidFraction) const
+{
+    ompl::base::SpaceInformation *si = si_;
+    const ompl::base::StateSpacePtr &space = si->getStateSpace();
+    const bool planar = validity_->planar();
+    ompl::base::State *state = si->allocState();
+    const auto poseAt = [&](double tau) {
+        space->interpolate(s1, s2, tau, state);
+        return poseOfState(state, planar);
+    };
+    const auto finish = [&](bool valid, double lastFree) {
+        si->freeState(state);
+        (valid ? validCount_ : invalidCount_).fetch_add(1, std::memory_order_relaxed);
+        if (!valid)
+        {
+            if (lastValidFraction)
+                *lastValidFraction = lastFree;
+            if (lastValidState)
+                space->interpolate(s1, s2, lastFree, lastValidState);
+        }
+        return valid;
+    };
+    if (!si->satisfiesBounds(s2) || validity_->poseCollides(poseOfState(s1, planar)))
+        return finish(false, 0.0);
+
+    // Quick rejection at OMPL's discrete resolution, unless the caller needs the first contact.
+    if (!lastValidState && !lastValidFraction)
+    {
+        const unsigned n = space->validSegmentCount(s1, s2);
+        for (unsigned k = n; k >= 1; --k)  // s2 first, as OMPL's discrete validator does
+            if (validity_->poseCollides(poseAt(double(k) / n)))
+                return finish(false, 0.0);
+    }
+
+    const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
+    const double speed =
+        (p2.translation - p1.translation).norm() + robotRadius_ * rotationAngle(p1.rotation, p2.rotation);
+    if (!(speed > 0.0))
+        return finish(!validity_->poseCollides(p2), 0.0);
+
+    // Intervals still to certify, earliest on top. `certified` is the end of the certified prefix.
+    struct Interval
+    {
+        double a, b;
+    };
+    std::vector<Interval> pending{{0.0, 1.0}};
+    double certified = 0.0;
+    std::size_t queries = 0;
+    while (!pending.empty())
+    {
+        const Interval iv = pending.back();
+        pending.pop_back();
+        const double mid = 0.5 * (iv.a + iv.b);
+        const double needed = speed * 0.5 * (iv.b - iv.a);
+        const RigidTransform pose = poseAt(mid);
+        if (++queries > kMaxQueries)
+            return finish(false, certified);
+        if (!validity_->poseWithinDistance(pose, needed))
+        {
+            certified = iv.b;
+            continue;
+        }
+        if (validity_->poseCollides(pose))
+            return finish(false, certified);
+        if (needed < minimumClearance_)
+            return finish(false, certified);  // too close to certify
+        pending.push_back({mid, iv.b});
+        pending.push_back({iv.a, mid});
+    }
+    return finish(true, 1.0);
+}
+}  // namespace hcd
