@@ -10,6 +10,7 @@ namespace hcd::cli
 int runSolve(const std::vector<std::string> &args);
 int runCheck(const std::vector<std::string> &args);
 int runInspect(const std::vector<std::string> &args);
+int runBench(const std::vector<std::string> &args);
 
 /// Exit statuses shared by all commands.
 enum ExitStatus

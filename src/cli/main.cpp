@@ -4,6 +4,9 @@
 #include "commands.h"
 
 #include "hybridcd/io/input_error.h"
+#ifdef HYBRIDCD_HAVE_FCL
+#include "hybridcd/fcl/fcl_checker.h"
+#endif
 
 #include <ompl/util/Console.h>
 
@@ -19,8 +22,10 @@ commands:
            [--verbose]
   check    classify poses: --states FILE [--checker NAME]   (prints 1 free / 0 colliding per pose)
   inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
+  bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
+           [--time SECONDS] [--memory MB] [--shard I/N] [--out FILE.log] [--motion ...] [--seed N]
 
-Checkers: obb (default), bruteforce. Planners: see 'hybridcd solve --planner help'.
+Checkers: obb (default), bruteforce, fcl (when built with FCL). Planners: see 'hybridcd solve --planner help'.
 )";
 }
 
@@ -35,6 +40,9 @@ int main(int argc, char **argv)
     const std::string command = args[0];
     args.erase(args.begin());
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+#ifdef HYBRIDCD_HAVE_FCL
+    hcd::registerFclChecker();
+#endif
     try
     {
         if (command == "solve")
@@ -43,6 +51,8 @@ int main(int argc, char **argv)
             return hcd::cli::runCheck(args);
         if (command == "inspect")
             return hcd::cli::runInspect(args);
+        if (command == "bench")
+            return hcd::cli::runBench(args);
         throw hcd::cli::UsageError("unknown command '" + command + "'");
     }
     catch (const hcd::cli::UsageError &e)

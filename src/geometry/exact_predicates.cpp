@@ -85,6 +85,10 @@ int orient2d(double ax, double ay, double bx, double by, double cx, double cy)
     }
     if (!std::isfinite(ax + ay + bx + by + cx + cy))
         return 0;
+    // Both products have an exactly zero factor (a difference of doubles is zero only for equal
+    // values): the determinant is exactly zero. Common for axis-aligned faces seen edge-on.
+    if ((bx == ax || cy == ay) && (by == ay || cx == ax))
+        return 0;
     return orient2dExact(ax, ay, bx, by, cx, cy);
 }
 

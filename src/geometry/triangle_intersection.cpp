@@ -117,8 +117,12 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
     if ((sa0 > 0 && sa1 > 0 && sa2 > 0) || (sa0 < 0 && sa1 < 0 && sa2 < 0))
         return false;
 
-    const bool degenerateA = isDegenerateTriangle(a0, a1, a2);
-    const bool degenerateB = isDegenerateTriangle(b0, b1, b2);
+    // A degenerate triangle has every point on "its plane", so degeneracy is only possible (and
+    // only worth the predicates to decide) when all of the other triangle's signs are zero.
+    const bool allSbZero = sb0 == 0 && sb1 == 0 && sb2 == 0;
+    const bool allSaZero = sa0 == 0 && sa1 == 0 && sa2 == 0;
+    const bool degenerateA = allSbZero && isDegenerateTriangle(a0, a1, a2);
+    const bool degenerateB = allSaZero && isDegenerateTriangle(b0, b1, b2);
     if (degenerateA || degenerateB)
     {
         // A degenerate triangle is the union of its edges.
@@ -139,7 +143,7 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
                segmentIntersectsTriangle(b2, b0, a0, a1, a2);
     }
 
-    if (sb0 == 0 && sb1 == 0 && sb2 == 0)
+    if (allSbZero)
     {
         // Coplanar: edges cross, or one triangle holds a vertex of the other.
         const Projection pr = faithfulProjection(a0, a1, a2);

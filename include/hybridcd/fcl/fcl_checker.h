@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// FCL as a checker, set up the way OMPL.app sets it up, for side-by-side comparisons.
+#pragma once
+
+#include "hybridcd/query/collision_checker.h"
+
+#include <memory>
+
+namespace hcd
+{
+/// FCL's `BVHModel<OBBRSS>` for robot and environment and `fcl::collide` with one contact, as in
+/// OMPL.app's FCLStateValidityChecker; `distance` uses `fcl::distance`. FCL treats meshes as
+/// surfaces and decides with floating-point tests, so it may differ from `bruteforce` on exact
+/// touching; it is here to be measured against, not relied upon.
+class FclChecker final : public CollisionChecker
+{
+public:
+    explicit FclChecker(const CollisionScene &scene);
+    ~FclChecker() override;
+    std::string name() const override { return "fcl"; }
+    bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    std::vector<HierarchyReport> hierarchies() const override;
+
+private:
+    struct Models;
+    std::unique_ptr<Models> models_;
+};
+
+/// Adds "fcl" to the checker registry (called by the CLI and the benchmarks at start-up).
+void registerFclChecker();
+}  // namespace hcd

@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `hybridcd bench`: OMPL benchmark runs of a problem's planners with one or more checkers, written
+// as an OMPL benchmark log (readable by ompl_benchmark_statistics), optionally one shard of many.
+#include "command_line.h"
+#include "commands.h"
+
+#include "hybridcd/io/input_error.h"
+#include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/query/checker_registry.h"
+#include "planners/planner_catalogue.h"
+
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace hcd::cli
+{
+namespace
+{
+std::vector<std::string> splitList(const std::string &text)
+{
+    std::vector<std::string> items;
+    std::stringstream s(text);
+    std::string item;
+    while (std::getline(s, item, ','))
+        if (!item.empty())
+            items.push_back(item);
+    return items;
+}
+
+// "I/N" with 0 <= I < N.
+std::pair<unsigned, unsigned> parseShard(const std::string &text)
+{
+    const auto slash = text.find('/');
+    try
+    {
+        if (slash != std::string::npos)
+        {
+            const long index = std::stol(text.substr(0, slash)), count = std::stol(text.substr(slash + 1));
+            if (count >= 1 && index >= 0 && index < count)
+                return {unsigned(index), unsigned(count)};
+        }
+    }
+    catch (const std::exception &)
+    {
+    }
+    throw UsageError("--shard expects I/N with 0 <= I < N, got '" + text + "'");
+}
+
+struct CheckerSlot
+{
+    std::string name;
+    std::shared_ptr<const CollisionChecker> checker;
+    std::shared_ptr<StateValidityChecker> validity;
+};
+}  // namespace
+
+int runBench(const std::vector<std::string> &args)
+{
+    const CommandLine cl(args, {"checker", "runs", "time", "memory", "shard", "out", "planner", "motion", "seed"}, {});
+    if (cl.has("seed"))
+        ompl::RNG::setSeed(std::uint_fast32_t(cl.integer("seed", 0)));
+    const LoadedProblem problem = loadProblem(cl.problem());
+    const ProblemConfig &cfg = problem.config;
+    const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));
+    const auto [shardIndex, shardCount] = parseShard(cl.text("shard", "0/1"));
+
+    const long long totalRuns = cl.integer("runs", cfg.benchmark.runCount);
+    if (totalRuns < 1)
+        throw UsageError("--runs needs a positive number");
+    // Shard I of N does the runs whose index is I modulo N, so shards never overlap and together
+    // make exactly the whole benchmark.
+    const unsigned shardRuns = unsigned((totalRuns - shardIndex + shardCount - 1) / shardCount);
+    const double timeLimit = cl.number("time", cfg.benchmark.timeLimit);
+    const double memoryLimit = cl.number("memory", cfg.benchmark.memoryLimit);
+
+    std::vector<PlannerRequest> requests;
+    if (cl.has("planner"))
+        for (const std::string &p : splitList(cl.text("planner", "")))
+            requests.push_back({p, "", {}});
+    else
+        requests = cfg.planners;
+    if (requests.empty())
+        requests.push_back({"rrtconnect", "", {}});
+
+    std::vector<CheckerSlot> slots;
+    for (const std::string &name : splitList(cl.text("checker", "obb")))
+        slots.push_back({name, makeChecker(name, problem.scene), nullptr});
+    if (slots.empty())
+        throw UsageError("--checker needs at least one checker name");
+
+    PlanningProblem planning = makePlanningProblem(problem, slots.front().checker, motion);
+    for (CheckerSlot &slot : slots)
+        slot.validity = installChecker(planning, problem, slot.checker, motion);
+
+    ompl::tools::Benchmark benchmark(*planning.setup, cfg.name);
+    std::map<const ompl::base::Planner *, std::size_t> slotOf;
+    for (std::size_t c = 0; c < slots.size(); ++c)
+        for (const PlannerRequest &request : requests)
+        {
+            ompl::base::PlannerPtr planner = makePlanner(request, planning.setup->getSpaceInformation());
+            planner->setName(planner->getName() + "[" + slots[c].name + "]");
+            slotOf[planner.get()] = c;
+            benchmark.addPlanner(planner);
+        }
+    benchmark.addExperimentParameter("checkers", "VARCHAR(256)", cl.text("checker", "obb"));
+    benchmark.addExperimentParameter("motion_check", "VARCHAR(32)", cl.text("motion", "continuous"));
+    benchmark.addExperimentParameter("shard_index", "INTEGER", std::to_string(shardIndex));
+    benchmark.addExperimentParameter("shard_count", "INTEGER", std::to_string(shardCount));
+    benchmark.addExperimentParameter("total_runs", "INTEGER", std::to_string(totalRuns));
+
+    const std::size_t totalThisShard = std::size_t(shardRuns) * slotOf.size();
+    std::size_t done = 0;
+    std::map<const ompl::base::Planner *, unsigned> runsSoFar;
+    benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) {
+        // Point the space at this planner's checker and zero its counters.
+        const CheckerSlot &slot = slots[slotOf.at(planner.get())];
+        installChecker(planning, problem, slot.checker, motion)->resetCounters();
+        slots[slotOf.at(planner.get())].validity = planning.validity;
+    });
+    benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &run) {
+        const CheckerSlot &slot = slots[slotOf.at(planner.get())];
+        const unsigned local = runsSoFar[planner.get()]++;
+        run["collision checks INTEGER"] = std::to_string(slot.validity->checkCount());
+        run["collision checking time REAL"] = std::to_string(slot.validity->checkSeconds());
+        run["checker VARCHAR(32)"] = slot.name;
+        run["run index INTEGER"] = std::to_string(shardIndex + std::size_t(local) * shardCount);
+        ++done;
+        std::cerr << "\r[" << done << "/" << totalThisShard << "] " << planner->getName() << " run " << local + 1
+                  << "/" << shardRuns << "   " << std::flush;
+    });
+
+    if (shardRuns == 0)
+        throw UsageError("shard " + std::to_string(shardIndex) + "/" + std::to_string(shardCount) + " has no runs of " +
+                         std::to_string(totalRuns));
+    ompl::tools::Benchmark::Request request(timeLimit, memoryLimit, shardRuns, 0.05, false, false, true);
+    benchmark.benchmark(request);
+    std::cerr << '\n';
+
+    const std::string out = cl.text("out", cfg.name + (shardCount > 1 ? ".shard" + std::to_string(shardIndex) : "") + ".log");
+    if (!benchmark.saveResultsToFile(out.c_str()))
+        throw InputError(out, 0, "cannot write the benchmark log");
+    std::cout << "benchmark log written to: " << out << " (" << slotOf.size() << " planner/checker pairs, " << shardRuns
+              << " runs each)\n";
+    return kSuccess;
+}
+}  // namespace hcd::cli
