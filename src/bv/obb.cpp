@@ -60,10 +60,14 @@ bool Obb::contains(const Vec3 &p) const
 
 bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance)
 {
-    // Express a's axes and centre in b's box frame: R = B^T (Q A), t = B^T (Q ca + p - cb).
-    const Mat3 aAxesWorld = worldFromA.rotation * a.axes;
-    const Mat3 r = b.axes.transpose() * aAxesWorld;
-    const Vec3 t = b.axes.transpose() * (worldFromA.apply(a.center) - b.center);
+    return obbsOverlap(a.transformed(worldFromA), b, tolerance);
+}
+
+bool obbsOverlap(const Obb &a, const Obb &b, double tolerance)
+{
+    // Express a's axes and centre in b's box frame: R = B^T A, t = B^T (ca - cb).
+    const Mat3 r = b.axes.transpose() * a.axes;
+    const Vec3 t = b.axes.transpose() * (a.center - b.center);
     // The small constant keeps near-parallel edge-cross axes (which degenerate) conservative.
     const Mat3 absR = r.cwiseAbs().array() + 1e-12;
     const Vec3 &ea = a.halfExtents, &eb = b.halfExtents;
@@ -95,8 +99,13 @@ bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, d
 
 double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance)
 {
-    const Mat3 r = b.axes.transpose() * (worldFromA.rotation * a.axes);
-    const Vec3 t = b.axes.transpose() * (worldFromA.apply(a.center) - b.center);
+    return obbDistanceLowerBound(a.transformed(worldFromA), b, tolerance);
+}
+
+double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance)
+{
+    const Mat3 r = b.axes.transpose() * a.axes;
+    const Vec3 t = b.axes.transpose() * (a.center - b.center);
     const Mat3 absR = r.cwiseAbs();
     double gap = 0.0;
     for (int i = 0; i < 3; ++i)

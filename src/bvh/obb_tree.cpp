@@ -37,6 +37,7 @@ void ObbTree::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, 
         for (int k = 0; k < 3; ++k)
             scratch.push_back(mesh_->corner(order_[i], k));
     nodes_[node].box = Obb::fit(scratch);
+    nodes_[node].radius = nodes_[node].box.halfExtents.norm() * (1.0 + 1e-12);
     nodes_[node].firstTriangle = begin;
     nodes_[node].triangleCount = end - begin;
     if (end - begin <= maxLeafTriangles_)

@@ -3,9 +3,10 @@
 
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
+#include "hybridcd/query/placed_robot.h"
+#include "hybridcd/query/traversal_stack.h"
 
 #include <cmath>
-#include "hybridcd/query/traversal_stack.h"
 
 namespace hcd
 {
@@ -16,6 +17,20 @@ ObbTreeChecker::ObbTreeChecker(CollisionScene scene, unsigned maxLeafTriangles)
       robotRadius_(scene_.robot->radiusAboutOrigin()),
       environmentMagnitude_(scene_.environment->radiusAboutOrigin())
 {
+    const TriangleMesh &env = *scene_.environment;
+    environmentTriangleBounds_.reserve(env.triangleCount());
+    for (std::size_t t = 0; t < env.triangleCount(); ++t)
+    {
+        const Vec3 &a = env.corner(t, 0), &b = env.corner(t, 1), &c = env.corner(t, 2);
+        environmentTriangleBounds_.push_back({a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)});
+    }
+}
+
+double ObbTreeChecker::toleranceFor(const RigidTransform &worldFromRobot) const
+{
+    // Rounding in the box tests scales with the coordinates involved; 1e-10 of them covers it
+    // many times over while costing nothing measurable in culling.
+    return 1e-10 * (1.0 + worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
 }
 
 bool ObbTreeChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
@@ -35,13 +50,13 @@ bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double 
     if (robotTree_.empty() || environmentTree_.empty())
         return false;
 
-    // Rounding in the box test scales with the coordinates involved; 1e-10 of them covers it many
-    // times over while costing nothing measurable in culling.
-    const double tolerance =
-        1e-10 * (1.0 + worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
+    const double tolerance = toleranceFor(worldFromRobot);
+    // Exact comparisons on coordinates need no tolerance; the proximity slack covers delta.
+    const double boundsSlack = delta > 0.0 ? delta * (1.0 + 1e-9) + tolerance : 0.0;
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
-    const TriangleMesh &robot = *scene_.robot, &env = *scene_.environment;
+    const TriangleMesh &env = *scene_.environment;
+    PlacedRobot placed(robotTree_, worldFromRobot);
 
     std::uint64_t boxTests = 0, triangleTests = 0;
     bool hit = false;
@@ -53,24 +68,30 @@ bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double 
         const ObbTree::Node &rn = rNodes[pair.robot];
         const ObbTree::Node &en = eNodes[pair.environment];
         ++boxTests;
-        // Growing the tolerance by delta keeps every pair closer than delta (axes have length <= 1).
-        if (!obbsOverlap(rn.box, worldFromRobot, en.box, tolerance + delta))
+        // Circumscribed spheres first (a few flops), then the separating-axis test. Growing the
+        // tolerance by delta keeps every pair closer than delta (the axes have length <= 1).
+        const Obb &robotBox = placed.box(pair.robot);
+        const double reach = rn.radius + en.radius + tolerance + delta;
+        if ((robotBox.center - en.box.center).squaredNorm() > reach * reach ||
+            !obbsOverlap(robotBox, en.box, tolerance + delta))
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
             for (std::uint32_t i = 0; i < rn.triangleCount && !hit; ++i)
             {
-                const std::uint32_t rt = robotTree_.triangleOrder()[rn.firstTriangle + i];
-                const Vec3 a0 = worldFromRobot.apply(robot.corner(rt, 0));
-                const Vec3 a1 = worldFromRobot.apply(robot.corner(rt, 1));
-                const Vec3 a2 = worldFromRobot.apply(robot.corner(rt, 2));
+                const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
                 for (std::uint32_t j = 0; j < en.triangleCount; ++j)
                 {
                     const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
+                    const TriangleBounds &eb = environmentTriangleBounds_[et];
+                    if ((a.min.array() > eb.max.array() + boundsSlack).any() ||
+                        (eb.min.array() > a.max.array() + boundsSlack).any())
+                        continue;
                     ++triangleTests;
                     const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
-                    if (delta == 0.0 ? trianglesIntersect(a0, a1, a2, b0, b1, b2)
-                                     : triangleDistance(a0, a1, a2, b0, b1, b2) <= delta * (1.0 + 1e-9) + tolerance)
+                    if (delta == 0.0 ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
+                                     : triangleDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2) <=
+                                           delta * (1.0 + 1e-9) + tolerance)
                     {
                         hit = true;
                         break;
@@ -112,13 +133,17 @@ double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats
 
     // Branch and bound: descend pairs whose box lower bound is below the best distance found yet,
     // nearer pair first, so the bound tightens early.
-    const double tolerance =
-        1e-10 * (1.0 + worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
+    const double tolerance = toleranceFor(worldFromRobot);
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
-    const TriangleMesh &robot = *scene_.robot, &env = *scene_.environment;
+    const TriangleMesh &env = *scene_.environment;
+    PlacedRobot placed(robotTree_, worldFromRobot);
     double best = std::numeric_limits<double>::infinity();
     std::uint64_t boxTests = 0, triangleTests = 0;
+    const auto lowerBound = [&](const NodePair &p) {
+        ++boxTests;
+        return obbDistanceLowerBound(placed.box(p.robot), eNodes[p.environment].box, tolerance);
+    };
     TraversalStack stack;
     stack.push({0, 0});
     while (!stack.empty())
@@ -126,23 +151,19 @@ double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats
         const NodePair pair = stack.pop();
         const ObbTree::Node &rn = rNodes[pair.robot];
         const ObbTree::Node &en = eNodes[pair.environment];
-        ++boxTests;
-        if (obbDistanceLowerBound(rn.box, worldFromRobot, en.box, tolerance) >= best)
+        if (lowerBound(pair) >= best)
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
             for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
             {
-                const std::uint32_t rt = robotTree_.triangleOrder()[rn.firstTriangle + i];
-                const Vec3 a0 = worldFromRobot.apply(robot.corner(rt, 0));
-                const Vec3 a1 = worldFromRobot.apply(robot.corner(rt, 1));
-                const Vec3 a2 = worldFromRobot.apply(robot.corner(rt, 2));
+                const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
                 for (std::uint32_t j = 0; j < en.triangleCount; ++j)
                 {
                     const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
                     ++triangleTests;
-                    best = std::min(best, triangleDistance(a0, a1, a2, env.corner(et, 0), env.corner(et, 1),
-                                                           env.corner(et, 2)));
+                    best = std::min(best, triangleDistance(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
+                                                           env.corner(et, 1), env.corner(et, 2)));
                 }
             }
             continue;
@@ -153,11 +174,7 @@ double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats
                                     : NodePair{pair.robot, std::uint32_t(en.firstChild)};
         NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
                                      : NodePair{pair.robot, std::uint32_t(en.firstChild + 1)};
-        const double lbFirst = obbDistanceLowerBound(rNodes[first.robot].box, worldFromRobot,
-                                                     eNodes[first.environment].box, tolerance);
-        const double lbSecond = obbDistanceLowerBound(rNodes[second.robot].box, worldFromRobot,
-                                                      eNodes[second.environment].box, tolerance);
-        if (lbFirst > lbSecond)
+        if (lowerBound(first) > lowerBound(second))
             std::swap(first, second);
         stack.push(second);  // popped after the nearer one
         stack.push(first);
@@ -175,6 +192,7 @@ std::vector<HierarchyReport> ObbTreeChecker::hierarchies() const
     return {{"robot OBB tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
              robotTree_.memoryBytes()},
             {"environment OBB tree", environmentTree_.nodes().size(), environmentTree_.depth(),
-             environmentTree_.buildSeconds(), environmentTree_.memoryBytes()}};
+             environmentTree_.buildSeconds(), environmentTree_.memoryBytes() +
+                                                  environmentTriangleBounds_.capacity() * sizeof(TriangleBounds)}};
 }
 }  // namespace hcd

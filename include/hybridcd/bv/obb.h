@@ -27,6 +27,9 @@ struct Obb
 
     /// True when `p` lies in the box (inclusive).
     bool contains(const Vec3 &p) const;
+
+    /// The same box mapped by `pose` (its extents are unchanged).
+    Obb transformed(const RigidTransform &pose) const { return {pose.apply(center), pose.rotation * axes, halfExtents}; }
 };
 
 /// Separating-axis test (15 axes) between box `a` mapped into world by `worldFromA` and box `b`
@@ -34,7 +37,13 @@ struct Obb
 /// more than `tolerance`, which callers set to cover rounding at their coordinates' magnitude.
 bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance);
 
+/// The same test for two boxes given in one frame.
+bool obbsOverlap(const Obb &a, const Obb &b, double tolerance);
+
 /// A lower bound on the distance between box `a` (mapped by `worldFromA`) and box `b`: the largest
 /// gap along the six face normals, less `tolerance`, and never below zero.
 double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance);
+
+/// The same bound for two boxes given in one frame.
+double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance);
 }  // namespace hcd

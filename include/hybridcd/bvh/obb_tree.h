@@ -22,6 +22,7 @@ public:
     struct Node
     {
         Obb box;
+        double radius = 0.0;  ///< of the box's circumscribed sphere, for a cheap first reject
         std::int32_t firstChild = -1;  ///< index of the left child (right = +1), -1 for a leaf
         std::uint32_t firstTriangle = 0;  ///< leaves: first index into triangleOrder()
         std::uint32_t triangleCount = 0;

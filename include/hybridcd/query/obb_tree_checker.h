@@ -23,11 +23,18 @@ public:
 private:
     /// Collision (delta = 0, exact triangle test) or proximity (delta > 0) with early exit.
     bool anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const;
+    double toleranceFor(const RigidTransform &worldFromRobot) const;
+
+    struct TriangleBounds
+    {
+        Vec3 min, max;
+    };
 
     CollisionScene scene_;
     ObbTree robotTree_;
     ObbTree environmentTree_;
     double robotRadius_ = 0.0;
     double environmentMagnitude_ = 0.0;
+    std::vector<TriangleBounds> environmentTriangleBounds_;  ///< per mesh triangle, for a cheap exact reject
 };
 }  // namespace hcd

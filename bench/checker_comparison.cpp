@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Per-check comparison: the same random states (fixed seed, uniform in the problem's state space,
+// as a sampling planner draws them) through every checker. Reports the median and mean time per
+// check, the fraction in collision, and disagreements with `bruteforce`, as a Markdown table.
+//
+//   hybridcd_bench_checkers [--states N] [--seed S] [--checker obb,fcl,...] [--no-reference] PROBLEM.cfg...
+#include "hybridcd/fcl/fcl_checker.h"
+#include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/query/checker_registry.h"
+
+#include <ompl/util/RandomNumbers.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+using namespace hcd;
+
+namespace
+{
+double median(std::vector<double> v)
+{
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
+std::vector<std::string> split(const std::string &s)
+{
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ','))
+        out.push_back(item);
+    return out;
+}
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    std::size_t stateCount = 20000;
+    std::uint_fast32_t seed = 1;
+    std::string checkers = "obb,fcl";
+    bool reference = true;
+    std::vector<std::string> problems;
+    for (int i = 1; i < argc; ++i)
+    {
+        const std::string a = argv[i];
+        if (a == "--states" && i + 1 < argc)
+            stateCount = std::stoul(argv[++i]);
+        else if (a == "--seed" && i + 1 < argc)
+            seed = std::uint_fast32_t(std::stoul(argv[++i]));
+        else if (a == "--checker" && i + 1 < argc)
+            checkers = argv[++i];
+        else if (a == "--no-reference")
+            reference = false;
+        else if (a.rfind("--", 0) == 0)
+        {
+            std::cerr << "usage: " << argv[0]
+                      << " [--states N] [--seed S] [--checker a,b,...] [--no-reference] PROBLEM.cfg...\n";
+            return 1;
+        }
+        else
+            problems.push_back(a);
+    }
+    registerFclChecker();
+    ompl::RNG::setSeed(seed);
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+
+    std::cout << "| problem | checker | median ns/check | mean ns/check | median vs fcl | in collision | "
+                 "disagreements with bruteforce | build ms |\n"
+              << "|---|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const std::string &cfg : problems)
+    {
+        const LoadedProblem problem = loadProblem(cfg);
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene), MotionCheck::Discrete);
+        planning.setup->setup();
+        const auto si = planning.setup->getSpaceInformation();
+        auto sampler = si->allocStateSampler();
+        ompl::base::State *s = si->allocState();
+        std::vector<RigidTransform> poses;
+        for (std::size_t i = 0; i < stateCount; ++i)
+        {
+            sampler->sampleUniform(s);
+            poses.push_back(poseOfState(s, problem.config.planar));
+        }
+        si->freeState(s);
+
+        std::vector<char> truth;
+        if (reference)
+        {
+            const auto bf = makeChecker("bruteforce", problem.scene);
+            for (const RigidTransform &p : poses)
+                truth.push_back(bf->collides(p));
+        }
+        std::map<std::string, double> medians;
+        std::vector<std::string> rows;
+        for (const std::string &name : split(checkers))
+        {
+            const auto buildStart = std::chrono::steady_clock::now();
+            const auto checker = makeChecker(name, problem.scene);
+            const double buildMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
+            std::vector<double> ns(poses.size());
+            std::size_t colliding = 0, disagreements = 0;
+            for (std::size_t i = 0; i < poses.size(); ++i)
+            {
+                const auto t0 = std::chrono::steady_clock::now();
+                const bool hit = checker->collides(poses[i]);
+                ns[i] = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+                colliding += hit;
+                if (reference && bool(truth[i]) != hit)
+                    ++disagreements;
+            }
+            double mean = 0.0;
+            for (double v : ns)
+                mean += v / double(ns.size());
+            medians[name] = median(ns);
+            std::ostringstream row;
+            row << std::fixed << std::setprecision(0) << "| " << problem.config.name << " | " << name << " | "
+                << medians[name] << " | " << mean << " | %RATIO% | " << std::setprecision(1)
+                << 100.0 * double(colliding) / double(poses.size()) << "% | "
+                << (reference ? std::to_string(disagreements) : std::string("-")) << " | " << std::setprecision(1)
+                << buildMs << " |";
+            rows.push_back(row.str());
+        }
+        std::size_t r = 0;
+        for (const std::string &name : split(checkers))
+        {
+            std::string row = rows[r++];
+            std::ostringstream ratio;
+            if (medians.count("fcl"))
+                ratio << std::fixed << std::setprecision(2) << medians[name] / medians["fcl"];
+            else
+                ratio << "-";
+            row.replace(row.find("%RATIO%"), 7, ratio.str());
+            std::cout << row << '\n' << std::flush;
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Micro-benchmarks of the primitives every query is made of: the OBB separating-axis test, the
+// exact triangle-triangle test (generic and coplanar inputs), the orientation predicate.
+//
+//   build/bench/hybridcd_bench_micro --benchmark_format=json > micro.json
+#include "hybridcd/bv/obb.h"
+#include "hybridcd/geometry/exact_predicates.h"
+#include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/geometry/triangle_intersection.h"
+
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+using namespace hcd;
+
+namespace
+{
+std::mt19937_64 rng(1);
+
+Mat3 randomRotation()
+{
+    std::normal_distribution<double> n;
+    return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+}
+
+struct TrianglePair
+{
+    Vec3 a[3], b[3];
+};
+
+std::vector<TrianglePair> randomPairs(std::size_t n, double spread, bool coplanar)
+{
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<TrianglePair> v(n);
+    for (auto &p : v)
+        for (int k = 0; k < 3; ++k)
+        {
+            p.a[k] = Vec3(u(rng), u(rng), coplanar ? 0.0 : u(rng));
+            p.b[k] = Vec3(u(rng) * spread, u(rng) * spread, coplanar ? 0.0 : u(rng) * spread);
+        }
+    return v;
+}
+
+void BM_ObbOverlap(benchmark::State &state)
+{
+    std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.1, 1.0);
+    std::vector<std::pair<Obb, Obb>> boxes(1024);
+    std::vector<RigidTransform> poses(1024);
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+    {
+        boxes[i].first = {Vec3::Zero(), randomRotation(), Vec3(e(rng), e(rng), e(rng))};
+        boxes[i].second = {Vec3(u(rng), u(rng), u(rng)) * 2.0, randomRotation(), Vec3(e(rng), e(rng), e(rng))};
+        poses[i] = {randomRotation(), Vec3(u(rng), u(rng), u(rng))};
+    }
+    std::size_t i = 0, hits = 0;
+    for (auto _ : state)
+    {
+        const auto &b = boxes[i & 1023];
+        hits += obbsOverlap(b.first, poses[i & 1023], b.second, 1e-12);
+        ++i;
+    }
+    state.counters["overlap fraction"] = double(hits) / double(i);
+}
+BENCHMARK(BM_ObbOverlap);
+
+void BM_TriangleTest(benchmark::State &state, double spread, bool coplanar)
+{
+    const auto pairs = randomPairs(4096, spread, coplanar);
+    std::size_t i = 0, hits = 0;
+    for (auto _ : state)
+    {
+        const auto &p = pairs[i & 4095];
+        hits += trianglesIntersect(p.a[0], p.a[1], p.a[2], p.b[0], p.b[1], p.b[2]);
+        ++i;
+    }
+    state.counters["hit fraction"] = double(hits) / double(i);
+}
+BENCHMARK_CAPTURE(BM_TriangleTest, generic_near, 1.0, false);
+BENCHMARK_CAPTURE(BM_TriangleTest, generic_far, 3.0, false);
+BENCHMARK_CAPTURE(BM_TriangleTest, coplanar, 1.0, true);
+
+void BM_TriangleDistance(benchmark::State &state)
+{
+    const auto pairs = randomPairs(4096, 3.0, false);
+    std::size_t i = 0;
+    double sum = 0.0;
+    for (auto _ : state)
+    {
+        const auto &p = pairs[i & 4095];
+        sum += triangleDistance(p.a[0], p.a[1], p.a[2], p.b[0], p.b[1], p.b[2]);
+        ++i;
+    }
+    benchmark::DoNotOptimize(sum);
+}
+BENCHMARK(BM_TriangleDistance);
+
+void BM_Orient3d(benchmark::State &state, bool degenerate)
+{
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Vec3> pts(4096);
+    for (auto &p : pts)
+        p = Vec3(u(rng), u(rng), u(rng));
+    std::size_t i = 0;
+    int sum = 0;
+    for (auto _ : state)
+    {
+        const Vec3 &a = pts[i & 4095], &b = pts[(i + 1) & 4095], &c = pts[(i + 2) & 4095];
+        // The degenerate case puts d on the segment ab (up to the rounding of the midpoint), near the plane.
+        const Vec3 d = degenerate ? Vec3(0.5 * (a + b)) : pts[(i + 3) & 4095];
+        sum += orient3d(a, b, c, d);
+        ++i;
+    }
+    benchmark::DoNotOptimize(sum);
+}
+BENCHMARK_CAPTURE(BM_Orient3d, generic, false);
+BENCHMARK_CAPTURE(BM_Orient3d, on_plane_exact_fallback, true);
+}  // namespace
