@@ -3,7 +3,7 @@
 """Summarises an OMPL benchmark database (from ompl_benchmark_statistics) as a Markdown table:
 per experiment and planner[checker], runs, success rate, median solve time, median collision
 checks and time in collision checking, and the ratio of median solve time to the same planner
-with FCL in the same experiment.
+with FCL (OMPL.app's configuration: discrete motion checks) on the same problem.
 
     python3 bench/summarize_benchmark.py results.db
 """

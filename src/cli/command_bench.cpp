@@ -102,7 +102,10 @@ int runBench(const std::vector<std::string> &args)
         for (const PlannerRequest &request : requests)
         {
             ompl::base::PlannerPtr planner = makePlanner(request, planning.setup->getSpaceInformation());
-            planner->setName(planner->getName() + "[" + slots[c].name + "]");
+            // The checker (and continuous motion checking) in the name keeps configurations apart when
+            // several logs are merged into one database.
+            planner->setName(planner->getName() + "[" + slots[c].name +
+                             (motion == MotionCheck::Continuous ? "+ccd" : "") + "]");
             slotOf[planner.get()] = c;
             benchmark.addPlanner(planner);
         }

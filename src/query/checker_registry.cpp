@@ -2,7 +2,7 @@
 #include "hybridcd/query/checker_registry.h"
 
 #include "hybridcd/query/brute_force_checker.h"
-#include "hybridcd/query/obb_tree_checker.h"
+#include "hybridcd/query/volume_tree_checker.h"
 
 #include <map>
 #include <mutex>
@@ -22,7 +22,7 @@ struct Registry
 Registry &registry()
 {
     static Registry r{{},
-                      {{"obb", [](const CollisionScene &s) { return std::make_unique<ObbTreeChecker>(s); }},
+                      {{"obb", [](const CollisionScene &s) { return std::make_unique<ObbTreeChecker>(s, "obb"); }},
                        {"bruteforce", [](const CollisionScene &s) { return std::make_unique<BruteForceChecker>(s); }}}};
     return r;
 }

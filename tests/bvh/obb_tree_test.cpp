@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "support/test_support.h"
 
-#include "hybridcd/bvh/obb_tree.h"
+#include "hybridcd/bvh/volume_tree.h"
 #include "hybridcd/io/mesh_loader.h"
 
 #include <gtest/gtest.h>
@@ -11,23 +11,24 @@ using namespace hcd;
 namespace
 {
 // Every node's box holds every corner of every triangle below it (checked in the box frame).
-void expectContainsSubtree(const ObbTree &tree)
+template <class Volume, class Contains>
+void expectContainsSubtree(const VolumeTree<Volume> &tree, const Contains &contains)
 {
     const auto &nodes = tree.nodes();
     std::vector<std::size_t> counted(nodes.size(), 0);
     for (std::size_t i = 0; i < nodes.size(); ++i)
     {
-        const ObbTree::Node &n = nodes[i];
+        const auto &n = nodes[i];
         for (std::uint32_t k = 0; k < n.triangleCount; ++k)
         {
             const std::uint32_t t = tree.triangleOrder()[n.firstTriangle + k];
             for (int c = 0; c < 3; ++c)
-                ASSERT_TRUE(n.box.contains(tree.mesh().corner(t, c))) << "node " << i << " triangle " << t;
+                ASSERT_TRUE(contains(n.volume, tree.mesh().corner(t, c))) << "node " << i << " triangle " << t;
         }
         if (!n.isLeaf())
         {
             // Children partition the parent's run.
-            const ObbTree::Node &l = nodes[n.firstChild], &r = nodes[n.firstChild + 1];
+            const auto &l = nodes[n.firstChild], &r = nodes[n.firstChild + 1];
             EXPECT_EQ(l.firstTriangle, n.firstTriangle);
             EXPECT_EQ(l.triangleCount + r.triangleCount, n.triangleCount);
             EXPECT_EQ(r.firstTriangle, l.firstTriangle + l.triangleCount);
@@ -35,6 +36,7 @@ void expectContainsSubtree(const ObbTree &tree)
     }
     EXPECT_EQ(nodes.front().triangleCount, tree.mesh().triangleCount());
 }
+const auto obbContains = [](const Obb &b, const Vec3 &p) { return b.contains(p); };
 }  // namespace
 
 TEST(ObbTree, ContainsEveryTriangleOfItsSubtreeOnRandomSoup)
@@ -50,7 +52,7 @@ TEST(ObbTree, ContainsEveryTriangleOfItsSubtreeOnRandomSoup)
         mesh->triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
     }
     for (unsigned leaf : {1u, 4u})
-        expectContainsSubtree(ObbTree(mesh, leaf));
+        expectContainsSubtree(VolumeTree<Obb>(mesh, leaf), obbContains);
 }
 
 TEST(ObbTree, ContainsEveryTriangleOnFlatAndHugeMeshes)
@@ -68,7 +70,7 @@ TEST(ObbTree, ContainsEveryTriangleOnFlatAndHugeMeshes)
                 mesh->triangles.push_back({i * 30 + j, (i + 1) * 30 + j, i * 30 + j + 1});
                 mesh->triangles.push_back({(i + 1) * 30 + j, (i + 1) * 30 + j + 1, i * 30 + j + 1});
             }
-        expectContainsSubtree(ObbTree(mesh));
+        expectContainsSubtree(VolumeTree<Obb>(mesh), obbContains);
     }
 }
 
@@ -76,7 +78,7 @@ TEST(ObbTree, ContainsEveryTriangleOnOmplAppMeshes)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha_env-1.5.dae");
     auto mesh = std::make_shared<TriangleMesh>(loadMesh(cfg, MeshRole::Environment).mesh);
-    expectContainsSubtree(ObbTree(mesh));
+    expectContainsSubtree(VolumeTree<Obb>(mesh), obbContains);
 }
 
 TEST(ObbOverlap, NeverMissesOverlapFoundBySampling)

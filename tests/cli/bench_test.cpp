@@ -63,7 +63,7 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
     ASSERT_EQ(run.status, 0) << run.text;
     const Output stats = shell("cd " + dir + " && ompl_benchmark_statistics small.log -d small.db");
     ASSERT_EQ(stats.status, 0) << stats.text;
-    EXPECT_EQ(summarize(dir + "/small.db"), "geometric_KPIECE1[obb]|2|0,1;geometric_RRTConnect[obb]|2|0,1\n");
+    EXPECT_EQ(summarize(dir + "/small.db"), "geometric_KPIECE1[obb+ccd]|2|0,1;geometric_RRTConnect[obb+ccd]|2|0,1\n");
 }
 
 TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
@@ -84,7 +84,7 @@ TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
     ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics shard0.log shard1.log shard2.log -d shards.db").status, 0);
     ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics whole.log -d whole.db").status, 0);
     const std::string expected =
-        "geometric_RRTConnect[bruteforce]|5|0,1,2,3,4;geometric_RRTConnect[obb]|5|0,1,2,3,4\n";
+        "geometric_RRTConnect[bruteforce+ccd]|5|0,1,2,3,4;geometric_RRTConnect[obb+ccd]|5|0,1,2,3,4\n";
     EXPECT_EQ(summarize(dir + "/shards.db"), expected);
     EXPECT_EQ(summarize(dir + "/whole.db"), expected);
     EXPECT_NE(shell(base + " --shard 3/3").status, 0);

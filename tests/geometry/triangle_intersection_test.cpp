@@ -805,6 +805,56 @@ TEST(TriangleIntersection, CoordinatesNearOverflow)
     }
 }
 
+// Coordinates near 2^664, 2^120, 1 and 2^-535 in one pair: products inside the predicates' filter
+// underflow to subnormals while the error bound stays large. The first three pairs were found by
+// random search and are kept as regressions.
+TEST(TriangleIntersection, MixedMagnitudeCoordinates)
+{
+    const Triangle found[][2] = {
+        {{{Vec3(0x1.60611baf7a79ap+664, -0x1.eda7e7e3dfd72p+664, 0), Vec3(0x1.f896d8bd5b23ap-535, 0, 0),
+           Vec3(-0x1.ef3dcfc5b0e5ap-537, -0x1.87cd00370dbb8p+0, 0)}},
+         {{Vec3(0x1.8f3e0157b8ea8p+664, -0x1.ae02b6f12544p-535, 0x1.93448c6597e8ep-535),
+           Vec3(-0x1.6103f30b9dee8p+120, 0, 0), Vec3(0, -0x1.8749f703a863cp-537, -0x1.3b428e2ab3e62p-535)}}},
+        {{{Vec3(0x1.9276d94fb26eap-535, 0x1.b2c7d1c183724p+120, 0),
+           Vec3(-0x1.e534b32c7cf24p+664, 0x1.08ee24c871ebep+0, -0x1.fde52fc42fbeep+120),
+           Vec3(0, -0x1.0baa421b3e47p+664, 0)}},
+         {{Vec3(0x1.9bf884bfa98dp-535, 0, 0), Vec3(0x1.60abfd0940f5cp-537, 0x1.a312e0e358e3bp+120, 0x1.c0084ff2ce49p-537),
+           Vec3(-0x1.88dce6e49bc92p+120, -0x1.c3c517a296046p+0, 0x1.ffc0f64cc0968p+120)}}},
+        {{{Vec3(0, -0x1.c6c4ea182d5bbp+664, 0x1.65e57784cfe44p-535),
+           Vec3(0x1.11e91752400f8p-537, -0x1.ca04e99702cb6p-537, 0),
+           Vec3(0x1.512472072dfefp-537, 0x1.679f6723070a2p+0, 0x1.ac4ad7fde193cp-537)}},
+         {{Vec3(0x1.d92f7c534a8a2p-537, -0x1.a5ab3d120692p+0, -0x1.1d4a96ba8aaeap+0),
+           Vec3(0x1.322c07d45c784p+120, -0x1.85ea7eb873062p+0, 0x1.f945acef88f74p+0),
+           Vec3(0x1.1340f4d6226e1p-537, -0x1.35670ab7fc1ccp-535, 0)}}},
+    };
+    Tally tally{"mixed magnitudes"};
+    for (const auto &pair : found)
+    {
+        const auto exact = exactPair(pair[0], pair[1]);
+        ASSERT_EQ(referenceIntervals(exact[0], exact[1]), referenceEdges(exact[0], exact[1]));
+        check(tally, pair[0], pair[1], reference(pair[0], pair[1]));
+    }
+    TestRandom rng(9001);
+    auto coordinate = [&rng]()
+    {
+        const int k = integerIn(rng, 0, 5);
+        if (k == 5)
+            return 0.0;
+        const int exponents[] = {664, 120, 0, -535, -537};
+        const double v = std::ldexp(1.0 + unitDouble(rng), exponents[k]);
+        return (rng() & 1) ? v : -v;
+    };
+    for (int i = 0; i < 300; ++i)
+    {
+        Triangle t[2];
+        for (Triangle &tri : t)
+            for (Vec3 &p : tri.v)
+                p = Vec3(coordinate(), coordinate(), coordinate());
+        check(tally, t[0], t[1], reference(t[0], t[1]));
+    }
+    expectClean(tally);
+}
+
 // Non-finite input has no meaningful answer but must not crash.
 TEST(TriangleIntersection, NonFiniteInputDoesNotCrash)
 {

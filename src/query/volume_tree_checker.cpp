@@ -1,17 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "hybridcd/query/obb_tree_checker.h"
+#include "hybridcd/query/volume_tree_checker.h"
 
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/query/placed_robot.h"
 #include "hybridcd/query/traversal_stack.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hcd
 {
-ObbTreeChecker::ObbTreeChecker(CollisionScene scene, unsigned maxLeafTriangles)
+template <class Volume>
+VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles)
     : scene_(std::move(scene)),
+      name_(std::move(name)),
       robotTree_(scene_.robot, maxLeafTriangles),
       environmentTree_(scene_.environment, maxLeafTriangles),
       robotRadius_(scene_.robot->radiusAboutOrigin()),
@@ -26,24 +29,28 @@ ObbTreeChecker::ObbTreeChecker(CollisionScene scene, unsigned maxLeafTriangles)
     }
 }
 
-double ObbTreeChecker::toleranceFor(const RigidTransform &worldFromRobot) const
+template <class Volume>
+double VolumeTreeChecker<Volume>::toleranceFor(const RigidTransform &worldFromRobot) const
 {
     // Rounding in the box tests scales with the coordinates involved; 1e-10 of them covers it
     // many times over while costing nothing measurable in culling.
     return 1e-10 * (1.0 + worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
 }
 
-bool ObbTreeChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
+template <class Volume>
+bool VolumeTreeChecker<Volume>::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
 {
     return anyPairWithin(worldFromRobot, 0.0, stats);
 }
 
-bool ObbTreeChecker::withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
+template <class Volume>
+bool VolumeTreeChecker<Volume>::withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
 {
     return anyPairWithin(worldFromRobot, std::max(0.0, delta), stats);
 }
 
-bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
+template <class Volume>
+bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -56,7 +63,7 @@ bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double 
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
-    PlacedRobot placed(robotTree_, worldFromRobot);
+    PlacedRobot<Volume> placed(robotTree_, worldFromRobot);
 
     std::uint64_t boxTests = 0, triangleTests = 0;
     bool hit = false;
@@ -65,15 +72,16 @@ bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double 
     while (!stack.empty() && !hit)
     {
         const NodePair pair = stack.pop();
-        const ObbTree::Node &rn = rNodes[pair.robot];
-        const ObbTree::Node &en = eNodes[pair.environment];
+        const typename VolumeTree<Volume>::Node &rn = rNodes[pair.robot];
+        const typename VolumeTree<Volume>::Node &en = eNodes[pair.environment];
         ++boxTests;
         // Circumscribed spheres first (a few flops), then the separating-axis test. Growing the
         // tolerance by delta keeps every pair closer than delta (the axes have length <= 1).
-        const Obb &robotBox = placed.box(pair.robot);
+        using Traits = VolumeTraits<Volume>;
+        const Volume &robotVolume = placed.volume(pair.robot);
         const double reach = rn.radius + en.radius + tolerance + delta;
-        if ((robotBox.center - en.box.center).squaredNorm() > reach * reach ||
-            !obbsOverlap(robotBox, en.box, tolerance + delta))
+        if ((Traits::center(robotVolume) - Traits::center(en.volume)).squaredNorm() > reach * reach ||
+            !Traits::overlap(robotVolume, en.volume, tolerance + delta))
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
@@ -102,7 +110,7 @@ bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double 
         }
         // Split the node whose box is larger (by its largest extent); leaves cannot be split.
         const bool splitRobot =
-            en.isLeaf() || (!rn.isLeaf() && rn.box.halfExtents.maxCoeff() >= en.box.halfExtents.maxCoeff());
+            en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
         if (splitRobot)
         {
             stack.push({std::uint32_t(rn.firstChild + 1), pair.environment});
@@ -122,7 +130,8 @@ bool ObbTreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, double 
     return hit;
 }
 
-double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
+template <class Volume>
+double VolumeTreeChecker<Volume>::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
 {
     if (!worldFromRobot.isFinite())
         return 0.0;
@@ -137,20 +146,24 @@ double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
-    PlacedRobot placed(robotTree_, worldFromRobot);
+    PlacedRobot<Volume> placed(robotTree_, worldFromRobot);
     double best = std::numeric_limits<double>::infinity();
     std::uint64_t boxTests = 0, triangleTests = 0;
     const auto lowerBound = [&](const NodePair &p) {
         ++boxTests;
-        return obbDistanceLowerBound(placed.box(p.robot), eNodes[p.environment].box, tolerance);
+        const Volume &robotVolume = placed.volume(p.robot);
+        const Volume &envVolume = eNodes[p.environment].volume;
+        const double sphereGap = (VolumeTraits<Volume>::center(robotVolume) - VolumeTraits<Volume>::center(envVolume)).norm() -
+                                 rNodes[p.robot].radius - eNodes[p.environment].radius - tolerance;
+        return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
     TraversalStack stack;
     stack.push({0, 0});
     while (!stack.empty())
     {
         const NodePair pair = stack.pop();
-        const ObbTree::Node &rn = rNodes[pair.robot];
-        const ObbTree::Node &en = eNodes[pair.environment];
+        const typename VolumeTree<Volume>::Node &rn = rNodes[pair.robot];
+        const typename VolumeTree<Volume>::Node &en = eNodes[pair.environment];
         if (lowerBound(pair) >= best)
             continue;
         if (rn.isLeaf() && en.isLeaf())
@@ -169,7 +182,7 @@ double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats
             continue;
         }
         const bool splitRobot =
-            en.isLeaf() || (!rn.isLeaf() && rn.box.halfExtents.maxCoeff() >= en.box.halfExtents.maxCoeff());
+            en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
         NodePair first = splitRobot ? NodePair{std::uint32_t(rn.firstChild), pair.environment}
                                     : NodePair{pair.robot, std::uint32_t(en.firstChild)};
         NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
@@ -187,12 +200,16 @@ double ObbTreeChecker::distance(const RigidTransform &worldFromRobot, QueryStats
     return best;
 }
 
-std::vector<HierarchyReport> ObbTreeChecker::hierarchies() const
+template <class Volume>
+std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies() const
 {
-    return {{"robot OBB tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
+    const std::string kind = VolumeTraits<Volume>::kName;
+    return {{"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
              robotTree_.memoryBytes()},
-            {"environment OBB tree", environmentTree_.nodes().size(), environmentTree_.depth(),
+            {"environment " + kind + " tree", environmentTree_.nodes().size(), environmentTree_.depth(),
              environmentTree_.buildSeconds(), environmentTree_.memoryBytes() +
                                                   environmentTriangleBounds_.capacity() * sizeof(TriangleBounds)}};
 }
+
+template class VolumeTreeChecker<Obb>;
 }  // namespace hcd

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A binary bounding-volume hierarchy over the triangles of one mesh, for any volume type.
+//
+// Build: top-down. Each node's volume is fitted to the corners of its triangles (VolumeTraits<V>::fit).
+// The node's triangles are split across the volume's split axis (its longest direction) at the mean
+// of their centroids (Gottschalk's rule); if every centroid lands on one side, at the median
+// instead. Nodes are stored in one array with the two children of a node adjacent; leaves hold a
+// run of the tree's reordered triangle list. The same code builds the OBB tree, the ellipsoid
+// tree and the hybrid tree, so they differ only in their volumes.
+#pragma once
+
+#include "hybridcd/bvh/volume_traits.h"
+#include "hybridcd/geometry/triangle_mesh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <numeric>
+
+namespace hcd
+{
+template <class Volume>
+class VolumeTree
+{
+public:
+    using Traits = VolumeTraits<Volume>;
+
+    struct Node
+    {
+        Volume volume;
+        double radius = 0.0;  ///< circumscribed sphere about Traits::center(volume), for a cheap first reject
+        std::int32_t firstChild = -1;  ///< index of the left child (right = +1), -1 for a leaf
+        std::uint32_t firstTriangle = 0;  ///< first index into triangleOrder() of the subtree's run
+        std::uint32_t triangleCount = 0;
+
+        bool isLeaf() const { return firstChild < 0; }
+    };
+
+    /// Builds over `mesh` (kept alive by the tree). Leaves hold at most `maxLeafTriangles`.
+    explicit VolumeTree(std::shared_ptr<const TriangleMesh> mesh, unsigned maxLeafTriangles = 1)
+        : mesh_(std::move(mesh)), maxLeafTriangles_(std::max(1u, maxLeafTriangles))
+    {
+        const auto start = std::chrono::steady_clock::now();
+        const std::size_t n = mesh_->triangleCount();
+        if (n == 0)
+            return;
+        order_.resize(n);
+        std::iota(order_.begin(), order_.end(), 0u);
+        std::vector<Vec3> centroids(n);
+        for (std::size_t t = 0; t < n; ++t)
+            centroids[t] = (mesh_->corner(t, 0) + mesh_->corner(t, 1) + mesh_->corner(t, 2)) / 3.0;
+        nodes_.reserve(2 * n);
+        nodes_.emplace_back();
+        std::vector<Vec3> scratch;
+        build(0, 0, std::uint32_t(n), 1, centroids, scratch);
+        buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    const TriangleMesh &mesh() const { return *mesh_; }
+    const std::vector<Node> &nodes() const { return nodes_; }
+    bool empty() const { return nodes_.empty(); }
+    /// Mesh triangle indices in leaf order.
+    const std::vector<std::uint32_t> &triangleOrder() const { return order_; }
+    std::size_t depth() const { return depth_; }
+    double buildSeconds() const { return buildSeconds_; }
+    std::size_t memoryBytes() const { return nodes_.capacity() * sizeof(Node) + order_.capacity() * sizeof(std::uint32_t); }
+
+private:
+    void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::size_t level,
+               const std::vector<Vec3> &centroids, std::vector<Vec3> &scratch)
+    {
+        depth_ = std::max(depth_, level);
+        scratch.clear();
+        for (std::uint32_t i = begin; i < end; ++i)
+            for (int k = 0; k < 3; ++k)
+                scratch.push_back(mesh_->corner(order_[i], k));
+        Node &self = nodes_[node];
+        self.volume = Traits::fit(scratch);
+        self.radius = Traits::radius(self.volume);
+        self.firstTriangle = begin;
+        self.triangleCount = end - begin;
+        if (end - begin <= maxLeafTriangles_)
+            return;
+
+        const Vec3 axis = Traits::splitAxis(self.volume);
+        double mean = 0.0;
+        for (std::uint32_t i = begin; i < end; ++i)
+            mean += axis.dot(centroids[order_[i]]);
+        mean /= double(end - begin);
+        auto first = order_.begin() + begin, last = order_.begin() + end;
+        auto middle = std::partition(first, last, [&](std::uint32_t t) { return axis.dot(centroids[t]) < mean; });
+        if (middle == first || middle == last)
+        {
+            middle = first + (end - begin) / 2;
+            std::nth_element(first, middle, last, [&](std::uint32_t a, std::uint32_t b) {
+                return axis.dot(centroids[a]) < axis.dot(centroids[b]);
+            });
+        }
+        const std::uint32_t split = std::uint32_t(middle - order_.begin());
+        const std::uint32_t left = std::uint32_t(nodes_.size());
+        nodes_[node].firstChild = std::int32_t(left);  // `self` may dangle after the emplace below
+        nodes_.emplace_back();
+        nodes_.emplace_back();
+        build(left, begin, split, level + 1, centroids, scratch);
+        build(left + 1, split, end, level + 1, centroids, scratch);
+    }
+
+    std::shared_ptr<const TriangleMesh> mesh_;
+    unsigned maxLeafTriangles_;
+    std::vector<Node> nodes_;
+    std::vector<std::uint32_t> order_;
+    std::size_t depth_ = 0;
+    double buildSeconds_ = 0.0;
+};
+}  // namespace hcd
