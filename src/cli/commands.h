@@ -11,6 +11,8 @@ int runSolve(const std::vector<std::string> &args);
 int runCheck(const std::vector<std::string> &args);
 int runInspect(const std::vector<std::string> &args);
 int runBench(const std::vector<std::string> &args);
+int runCheckMotion(const std::vector<std::string> &args);
+int runClearance(const std::vector<std::string> &args);
 
 /// Exit statuses shared by all commands.
 enum ExitStatus

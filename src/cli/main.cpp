@@ -21,6 +21,9 @@ commands:
            [--out PATH_FILE] [--param KEY=VALUE,...] [--motion continuous|discrete]
            [--verbose]
   check    classify poses: --states FILE [--checker NAME]   (prints 1 free / 0 colliding per pose)
+  check-motion  continuous motion checks: --motions FILE [--checker NAME] [--tolerance FRACTION]
+           (two poses per line; prints 1 free, or 0 T with T the last free fraction before contact)
+  clearance  distance to the environment per pose: --states FILE [--checker NAME]
   inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
   bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
            [--time SECONDS] [--memory MB] [--shard I/N] [--out FILE.log] [--motion ...] [--seed N]
@@ -53,6 +56,10 @@ int main(int argc, char **argv)
             return hcd::cli::runInspect(args);
         if (command == "bench")
             return hcd::cli::runBench(args);
+        if (command == "check-motion")
+            return hcd::cli::runCheckMotion(args);
+        if (command == "clearance")
+            return hcd::cli::runClearance(args);
         throw hcd::cli::UsageError("unknown command '" + command + "'");
     }
     catch (const hcd::cli::UsageError &e)

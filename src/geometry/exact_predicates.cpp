@@ -22,6 +22,21 @@ constexpr double kTinyPermanent = 1.0e-250;
 
 int sign(const Rational &r) { return r.sign(); }
 
+// A product that lands in the subnormal range (or flushes to zero from nonzero factors) has lost
+// its relative accuracy; multiplied by a huge third factor, that error can exceed the static
+// bound, so such inputs take the exact path.
+bool productUnderflows(double x, double y)
+{
+    const double p = std::fabs(x * y);
+    return p < 0x1p-969 && x != 0.0 && y != 0.0;
+}
+
+bool anyUnderflow(double cx, double cy, double cz, double dx, double dy, double dz)
+{
+    return productUnderflows(cy, dz) || productUnderflows(cz, dy) || productUnderflows(cx, dz) ||
+           productUnderflows(cz, dx) || productUnderflows(cx, dy) || productUnderflows(cy, dx);
+}
+
 int orient3dExact(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
 {
     ++fallbackCount;
@@ -53,14 +68,14 @@ int orient3d(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
                              std::fabs(by) * (std::fabs(m3) + std::fabs(m4)) +
                              std::fabs(bz) * (std::fabs(m5) + std::fabs(m6));
     const double bound = kOrient3dErrorBound * permanent;
-    if (std::isfinite(permanent) && permanent > kTinyPermanent)
+    if (std::isfinite(permanent) && permanent > kTinyPermanent && !anyUnderflow(cx, cy, cz, dx, dy, dz))
     {
         if (det > bound)
             return 1;
         if (det < -bound)
             return -1;
     }
-    if (!std::isfinite(a.sum() + b.sum() + c.sum() + d.sum()))
+    if (!(a.allFinite() && b.allFinite() && c.allFinite() && d.allFinite()))
         return 0;  // NaN/inf input has no orientation; callers reject such poses earlier.
     // Four points sharing one coordinate exactly are coplanar (a zero column): the common case of
     // planar problems, whose robot and walls share their bottom plane, needs no exact arithmetic.
@@ -83,7 +98,8 @@ int orient2d(double ax, double ay, double bx, double by, double cx, double cy)
         if (det < -bound)
             return -1;
     }
-    if (!std::isfinite(ax + ay + bx + by + cx + cy))
+    if (!(std::isfinite(ax) && std::isfinite(ay) && std::isfinite(bx) && std::isfinite(by) && std::isfinite(cx) &&
+          std::isfinite(cy)))
         return 0;
     // Both products have an exactly zero factor (a difference of doubles is zero only for equal
     // values): the determinant is exactly zero. Common for axis-aligned faces seen edge-on.

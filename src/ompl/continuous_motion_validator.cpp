@@ -32,6 +32,11 @@ ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInfo
 {
 }
 
+void ContinuousMotionValidator::setContactTolerance(double fraction)
+{
+    contactTolerance_ = std::max(fraction, 1e-12);
+}
+
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
 {
     return check(s1, s2, nullptr, nullptr);
@@ -66,7 +71,7 @@ bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::b
         }
         return valid;
     };
-    if (!si->satisfiesBounds(s2) || validity_->poseCollides(poseOfState(s1, planar)))
+    if ((applyBounds_ && !si->satisfiesBounds(s2)) || validity_->poseCollides(poseOfState(s1, planar)))
         return finish(false, 0.0);
 
     // Quick rejection at OMPL's discrete resolution, unless the caller needs the first contact.
@@ -84,13 +89,15 @@ bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::b
     if (!(speed > 0.0))
         return finish(!validity_->poseCollides(p2), 0.0);
 
-    // Intervals still to certify, earliest on top. `certified` is the end of the certified prefix.
+    // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
+    // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
     struct Interval
     {
         double a, b;
     };
+    const bool refine = lastValidState || lastValidFraction;
     std::vector<Interval> pending{{0.0, 1.0}};
-    double certified = 0.0;
+    double certified = 0.0, contactAt = 2.0;
     std::size_t queries = 0;
     while (!pending.empty())
     {
@@ -107,12 +114,21 @@ bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::b
             continue;
         }
         if (validity_->poseCollides(pose))
-            return finish(false, certified);
+        {
+            contactAt = mid;
+            if (!refine || contactAt - certified <= contactTolerance_)
+                return finish(false, certified);
+            pending.clear();
+            pending.push_back({certified, contactAt});
+            continue;
+        }
         if (needed < minimumClearance_)
             return finish(false, certified);  // too close to certify
         pending.push_back({mid, iv.b});
         pending.push_back({iv.a, mid});
     }
+    if (contactAt <= 1.0)
+        return finish(false, certified);
     return finish(true, 1.0);
 }
 }  // namespace hcd

@@ -8,9 +8,10 @@
 // farther than B (b - a) / 2 from every obstacle, nothing on the interval touches. The validator
 // certifies [0, 1] by bisection with that proximity query (an early-exit query, about as cheap as a
 // collision check when clearances are large), splitting only the intervals it cannot certify, in
-// order from tau = 0 so the first contact found is the earliest. An interval is rejected when its
-// middle state collides (contact found) or when it shrinks below a clearance too small to certify
-// (1e-7 of the scene size): a motion is never accepted on rounding alone. A pass of collision
+// order from tau = 0 so the first contact found is the earliest. When a last valid state is asked
+// for, the search then narrows to the bracket [last certified, contact] until it is shorter than
+// the contact tolerance. A motion is rejected when a middle state collides (contact found) or when
+// an interval shrinks below a clearance too small to certify (1e-7 of the scene size): a motion is never accepted on rounding alone. A pass of collision
 // checks at OMPL's resolution first rejects most invalid motions at the discrete validator's cost.
 #pragma once
 
@@ -38,6 +39,13 @@ public:
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
 
+    /// How closely the first contact is bracketed when a last valid state is asked for, as a
+    /// fraction of the motion (default 1e-6): lastValid.second is at most this much before it.
+    void setContactTolerance(double fraction);
+
+    /// Whether s2 must satisfy the state-space bounds (default true, as OMPL's validators do).
+    void setApplyBounds(bool apply) { applyBounds_ = apply; }
+
     std::uint64_t validMotions() const { return validCount_.load(); }
     std::uint64_t invalidMotions() const { return invalidCount_.load(); }
 
@@ -48,6 +56,8 @@ private:
     std::shared_ptr<const StateValidityChecker> validity_;
     double robotRadius_;
     double minimumClearance_;
+    double contactTolerance_ = 1e-6;
+    bool applyBounds_ = true;
     mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0};
 };
 }  // namespace hcd
