@@ -39,55 +39,85 @@ void ContinuousMotionValidator::setContactTolerance(double fraction)
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
 {
-    return check(s1, s2, nullptr, nullptr);
+    return finish(certify(s1, s2, false), s1, s2, nullptr, nullptr);
 }
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                                             std::pair<ompl::base::State *, double> &lastValid) const
 {
-    return check(s1, s2, lastValid.first, &lastValid.second);
+    return finish(certify(s1, s2, true), s1, s2, lastValid.first, &lastValid.second);
 }
 
-bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::base::State *s2,
-                                      ompl::base::State *lastValidState, double *lastValidFraction) const
+ContinuousMotionValidator::Report ContinuousMotionValidator::checkMotionDetailed(const ompl::base::State *s1,
+                                                                                 const ompl::base::State *s2) const
+{
+    const Report report = certify(s1, s2, true);
+    finish(report, s1, s2, nullptr, nullptr);
+    return report;
+}
+
+bool ContinuousMotionValidator::finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
+                                       ompl::base::State *lastValidState, double *lastValidFraction) const
+{
+    (report.free ? validCount_ : invalidCount_).fetch_add(1, std::memory_order_relaxed);
+    if (!report.free)
+    {
+        if (lastValidFraction)
+            *lastValidFraction = report.lastFree;
+        if (lastValidState)
+            si_->getStateSpace()->interpolate(s1, s2, report.lastFree, lastValidState);
+    }
+    return report.free;
+}
+
+ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl::base::State *s1,
+                                                                     const ompl::base::State *s2, bool refine) const
 {
     ompl::base::SpaceInformation *si = si_;
     const ompl::base::StateSpacePtr &space = si->getStateSpace();
     const bool planar = validity_->planar();
-    ompl::base::State *state = si->allocState();
+    struct StateHolder
+    {
+        ompl::base::SpaceInformation *si;
+        ompl::base::State *state;
+        ~StateHolder() { si->freeState(state); }
+    } holder{si, si->allocState()};
+    ompl::base::State *state = holder.state;
     const auto poseAt = [&](double tau) {
         space->interpolate(s1, s2, tau, state);
         return poseOfState(state, planar);
     };
-    const auto finish = [&](bool valid, double lastFree) {
-        si->freeState(state);
-        (valid ? validCount_ : invalidCount_).fetch_add(1, std::memory_order_relaxed);
-        if (!valid)
-        {
-            if (lastValidFraction)
-                *lastValidFraction = lastFree;
-            if (lastValidState)
-                space->interpolate(s1, s2, lastFree, lastValidState);
-        }
-        return valid;
+    Report report;
+    const auto contact = [&](double lastFree, double at) {
+        report.lastFree = lastFree;
+        report.contactFound = true;
+        report.contactAt = at;
+        return report;
     };
-    if ((applyBounds_ && !si->satisfiesBounds(s2)) || validity_->poseCollides(poseOfState(s1, planar)))
-        return finish(false, 0.0);
+    if (validity_->poseCollides(poseOfState(s1, planar)))
+        return contact(0.0, 0.0);
+    if (applyBounds_ && !si->satisfiesBounds(s2))
+        return report;  // refused, no contact
 
-    // Quick rejection at OMPL's discrete resolution, unless the caller needs the first contact.
-    if (!lastValidState && !lastValidFraction)
+    // Quick rejection at OMPL's discrete resolution, unless the first contact is asked for.
+    if (!refine)
     {
         const unsigned n = space->validSegmentCount(s1, s2);
         for (unsigned k = n; k >= 1; --k)  // s2 first, as OMPL's discrete validator does
             if (validity_->poseCollides(poseAt(double(k) / n)))
-                return finish(false, 0.0);
+                return contact(0.0, double(k) / n);
     }
 
     const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
     const double speed =
         (p2.translation - p1.translation).norm() + robotRadius_ * rotationAngle(p1.rotation, p2.rotation);
     if (!(speed > 0.0))
-        return finish(!validity_->poseCollides(p2), 0.0);
+    {
+        if (validity_->poseCollides(p2))
+            return contact(0.0, 1.0);
+        report.free = true;
+        return report;
+    }
 
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
     // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
@@ -95,7 +125,6 @@ bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::b
     {
         double a, b;
     };
-    const bool refine = lastValidState || lastValidFraction;
     std::vector<Interval> pending{{0.0, 1.0}};
     double certified = 0.0, contactAt = 2.0;
     std::size_t queries = 0;
@@ -107,7 +136,7 @@ bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::b
         const double needed = speed * 0.5 * (iv.b - iv.a);
         const RigidTransform pose = poseAt(mid);
         if (++queries > kMaxQueries)
-            return finish(false, certified);
+            break;  // refused
         if (!validity_->poseWithinDistance(pose, needed))
         {
             certified = iv.b;
@@ -117,18 +146,23 @@ bool ContinuousMotionValidator::check(const ompl::base::State *s1, const ompl::b
         {
             contactAt = mid;
             if (!refine || contactAt - certified <= contactTolerance_)
-                return finish(false, certified);
+                break;
             pending.clear();
             pending.push_back({certified, contactAt});
             continue;
         }
-        if (needed < minimumClearance_)
-            return finish(false, certified);  // too close to certify
+        // Before any contact is seen, a clearance this small is refused rather than chased. Once a
+        // contact is bracketed, splitting goes on: near a slow (grazing) approach the certifiable
+        // intervals shrink well below the tolerance before the bracket does.
+        if (contactAt > 1.0 ? needed < minimumClearance_ : iv.b - iv.a < 1e-4 * contactTolerance_)
+            break;
         pending.push_back({mid, iv.b});
         pending.push_back({iv.a, mid});
     }
     if (contactAt <= 1.0)
-        return finish(false, certified);
-    return finish(true, 1.0);
+        return contact(certified, contactAt);
+    report.lastFree = certified;
+    report.free = pending.empty() && certified >= 1.0;
+    return report;
 }
 }  // namespace hcd

@@ -58,7 +58,8 @@ public:
     /// -1. When closed components nest or overlap, the lowest such index.
     int solidContaining(const Vec3 &p) const;
 
-    /// True if p is inside or on the surface of components()[component], which must be closed.
+    /// True if p is inside or on the surface of components()[component]; false when that component
+    /// is open. Throws std::out_of_range for an index past components().
     bool insideComponent(std::size_t component, const Vec3 &p) const;
 
     /// Fraction of the mesh's bounding-box volume that lies inside closed components, estimated

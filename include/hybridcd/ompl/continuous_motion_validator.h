@@ -39,6 +39,20 @@ public:
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
 
+    /// What a detailed check found: `free`; otherwise [0, lastFree] is proven collision-free and,
+    /// when `contactFound`, the robot touches the environment at `contactAt` (lastFree < contactAt
+    /// <= lastFree + contact tolerance). Without a contact the motion was refused as too close to call.
+    struct Report
+    {
+        bool free = false;
+        double lastFree = 0.0;
+        bool contactFound = false;
+        double contactAt = 1.0;
+    };
+
+    /// The full check, with the first contact bracketed to the contact tolerance.
+    Report checkMotionDetailed(const ompl::base::State *s1, const ompl::base::State *s2) const;
+
     /// How closely the first contact is bracketed when a last valid state is asked for, as a
     /// fraction of the motion (default 1e-6): lastValid.second is at most this much before it.
     void setContactTolerance(double fraction);
@@ -50,8 +64,10 @@ public:
     std::uint64_t invalidMotions() const { return invalidCount_.load(); }
 
 private:
-    bool check(const ompl::base::State *s1, const ompl::base::State *s2, ompl::base::State *lastValidState,
-               double *lastValidFraction) const;
+    /// The one code path of every public check; `refine` asks for the first contact's bracket.
+    Report certify(const ompl::base::State *s1, const ompl::base::State *s2, bool refine) const;
+    bool finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
+                ompl::base::State *lastValidState, double *lastValidFraction) const;
 
     std::shared_ptr<const StateValidityChecker> validity_;
     double robotRadius_;

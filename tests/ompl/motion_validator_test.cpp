@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Continuous motion validation: no tunnelling through thin walls, no misses from rotation, last
+// valid states that are valid, first contacts bracketed, clearance against brute force.
+#include "support/test_support.h"
+
+#include "hybridcd/ompl/continuous_motion_validator.h"
+#include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/query/checker_registry.h"
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace hcd;
+namespace ob = ompl::base;
+
+namespace
+{
+// A problem built in memory: robot and environment meshes, SE3, bounds [-50, 50]^3.
+LoadedProblem makeProblem(TriangleMesh robot, TriangleMesh environment)
+{
+    LoadedProblem p;
+    p.config.name = "in-memory";
+    p.config.volumeX = p.config.volumeY = p.config.volumeZ = std::make_pair(-50.0, 50.0);
+    p.robot.mesh = std::move(robot);
+    p.world.mesh = std::move(environment);
+    p.scene.robot = std::make_shared<const TriangleMesh>(p.robot.mesh);
+    p.scene.environment = std::make_shared<const TriangleMesh>(p.world.mesh);
+    return p;
+}
+
+TriangleMesh thinWall()
+{
+    TriangleMesh wall;
+    wall.vertices = {Vec3(0, -10, -10), Vec3(0, 10, -10), Vec3(0, 10, 10), Vec3(0, -10, 10)};
+    wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+    return wall;
+}
+
+void setPose(ob::State *s, const Vec3 &t, double yaw)
+{
+    auto *st = s->as<ob::SE3StateSpace::StateType>();
+    st->setXYZ(t.x(), t.y(), t.z());
+    st->rotation().setAxisAngle(0, 0, 1, yaw);
+}
+
+// First colliding fraction found by brute force at `steps` uniform samples, or 2 if none.
+double bruteForceFirstContact(const PlanningProblem &planning, const CollisionChecker &reference, const ob::State *a,
+                              const ob::State *b, int steps)
+{
+    const auto si = planning.setup->getSpaceInformation();
+    ob::State *s = si->allocState();
+    double found = 2.0;
+    for (int k = 0; k <= steps && found > 1.0; ++k)
+    {
+        si->getStateSpace()->interpolate(a, b, double(k) / steps, s);
+        if (reference.collides(poseOfState(s, false)))
+            found = double(k) / steps;
+    }
+    si->freeState(s);
+    return found;
+}
+}  // namespace
+
+TEST(MotionValidator, DiscreteTunnelsThroughAThinWallContinuousDoesNot)
+{
+    const LoadedProblem problem = makeProblem(test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)), thinWall());
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    ob::ScopedState<> a(si), b(si);
+    setPose(a.get(), Vec3(-20, 0, 0), 0.0);
+    // Pick the end so that OMPL's samples (at its default resolution) straddle the wall.
+    bool straddles = false;
+    for (double end = 20.0; end < 24.0 && !straddles; end += 0.01)
+    {
+        setPose(b.get(), Vec3(end, 0, 0), 0.0);
+        const unsigned n = si->getStateSpace()->validSegmentCount(a.get(), b.get());
+        straddles = true;
+        for (unsigned k = 0; k <= n; ++k)
+            straddles = straddles && std::fabs(-20.0 + (end + 20.0) * k / n) > 0.6;
+    }
+    ASSERT_TRUE(straddles);
+    const double end = b->as<ob::SE3StateSpace::StateType>()->getX();
+    ASSERT_TRUE(si->isValid(a.get()));
+    ASSERT_TRUE(si->isValid(b.get()));
+    ob::DiscreteMotionValidator discrete(si);
+    EXPECT_TRUE(discrete.checkMotion(a.get(), b.get())) << "the discrete validator was expected to tunnel";
+    const auto &continuous = *si->getMotionValidator();
+    EXPECT_FALSE(continuous.checkMotion(a.get(), b.get()));
+    std::pair<ob::State *, double> last{si->allocState(), 0.0};
+    EXPECT_FALSE(continuous.checkMotion(a.get(), b.get(), last));
+    // The front face (x + 0.5) reaches the wall at x = 0 when the centre is at -0.5; the last valid
+    // fraction is before that, within the default tolerance of 1e-6.
+    const double contact = 19.5 / (end + 20.0);
+    EXPECT_LE(last.second, contact);
+    EXPECT_GE(last.second, contact - 1e-6);
+    EXPECT_TRUE(si->isValid(last.first));
+    si->freeState(last.first);
+}
+
+TEST(MotionValidator, RotationAloneCannotSweepPastAPost)
+{
+    // A 20-long bar turning 90 degrees about its centre; a thin post near its tip placed between two
+    // of OMPL's samples. Translation is zero, so a bound on translation alone would miss it.
+    const TriangleMesh bar = test::boxMesh(Vec3(-10, -0.05, -0.05), Vec3(10, 0.05, 0.05));
+    LoadedProblem probe = makeProblem(bar, test::boxMesh(Vec3(40, 40, 40), Vec3(41, 41, 41)));
+    PlanningProblem probePlanning = makePlanningProblem(probe, makeChecker("obb", probe.scene));
+    probePlanning.setup->setup();
+    {
+        ob::ScopedState<> a(probePlanning.setup->getSpaceInformation()), b(probePlanning.setup->getSpaceInformation());
+        setPose(a.get(), Vec3(0, 0, 0), 0.0);
+        setPose(b.get(), Vec3(0, 0, 0), M_PI / 2);
+        const unsigned n = probePlanning.setup->getStateSpace()->validSegmentCount(a.get(), b.get());
+        const double angle = M_PI / 2 / n * 0.5;  // halfway between the first two samples
+        const Vec3 c(9.9 * std::cos(angle), 9.9 * std::sin(angle), 0.0);
+        probe = makeProblem(bar, test::boxMesh(c - Vec3(0.02, 0.02, 5), c + Vec3(0.02, 0.02, 5)));
+    }
+    PlanningProblem planning = makePlanningProblem(probe, makeChecker("obb", probe.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    ob::ScopedState<> a(si), b(si);
+    setPose(a.get(), Vec3(0, 0, 0), 0.0);
+    setPose(b.get(), Vec3(0, 0, 0), M_PI / 2);
+    ASSERT_TRUE(si->isValid(a.get()));
+    ASSERT_TRUE(si->isValid(b.get()));
+    ob::DiscreteMotionValidator discrete(si);
+    EXPECT_TRUE(discrete.checkMotion(a.get(), b.get())) << "the discrete validator was expected to miss the post";
+    const auto reference = makeChecker("bruteforce", probe.scene);
+    EXPECT_LE(bruteForceFirstContact(planning, *reference, a.get(), b.get(), 2000), 1.0);
+    const auto &continuous = dynamic_cast<const ContinuousMotionValidator &>(*si->getMotionValidator());
+    const auto report = continuous.checkMotionDetailed(a.get(), b.get());
+    EXPECT_FALSE(report.free);
+    ASSERT_TRUE(report.contactFound);
+    EXPECT_LE(report.contactAt - report.lastFree, 1e-6);
+}
+
+TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
+    const LoadedProblem problem = loadProblem(cfg);
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    const auto &validator = dynamic_cast<const ContinuousMotionValidator &>(*si->getMotionValidator());
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    auto sampler = si->allocStateSampler();
+    ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();
+    int free = 0, colliding = 0, refused = 0, attempts = 0;
+    while ((free < 20 || colliding < 40) && ++attempts < 5000)
+    {
+        sampler->sampleUniform(a);
+        if (!si->isValid(a))
+            continue;
+        // Short motions (a tenth of the space) so that both outcomes are common.
+        sampler->sampleUniformNear(b, a, 0.1 * si->getMaximumExtent());
+        si->enforceBounds(b);
+        const auto report = validator.checkMotionDetailed(a, b);
+        // Never later than the true contact: brute force finds nothing on [0, lastFree].
+        const int steps = 400;
+        for (int k = 0; k <= steps; ++k)
+        {
+            si->getStateSpace()->interpolate(a, b, report.lastFree * k / steps, s);
+            ASSERT_FALSE(reference->collides(poseOfState(s, false)));
+        }
+        if (report.free)
+        {
+            ++free;
+            continue;
+        }
+        ++colliding;
+        if (!report.contactFound)
+        {
+            ++refused;  // grazing closer than 1e-7 of the scene: refused, never accepted
+            continue;
+        }
+        EXPECT_LE(report.contactAt - report.lastFree, 1e-6);
+        si->getStateSpace()->interpolate(a, b, report.contactAt, s);
+        EXPECT_TRUE(reference->collides(poseOfState(s, false)));
+    }
+    EXPECT_GE(free, 20);
+    EXPECT_GE(colliding, 40);
+    EXPECT_LE(refused, colliding / 10);
+    si->freeState(a);
+    si->freeState(b);
+    si->freeState(s);
+}
+
+TEST(Clearance, MatchesBruteForceDistanceOnFreePoses)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
+    const LoadedProblem problem = loadProblem(cfg);
+    const auto obb = makeChecker("obb", problem.scene);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    test::TestRandom rng(3);
+    int checked = 0;
+    for (const RigidTransform &pose : test::randomPoses(problem, 600, rng))
+    {
+        const double expected = reference->distance(pose);
+        const double got = obb->distance(pose);
+        EXPECT_NEAR(got, expected, 1e-9 * (1.0 + expected));
+        EXPECT_EQ(expected == 0.0, reference->collides(pose));
+        // The proximity query agrees with the distance on either side of it.
+        if (expected > 1e-6)
+        {
+            EXPECT_FALSE(obb->withinDistance(pose, 0.99 * expected));
+            EXPECT_TRUE(obb->withinDistance(pose, 1.01 * expected));
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 100);
+}
