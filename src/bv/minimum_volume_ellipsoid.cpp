@@ -347,72 +347,75 @@ MveeResult fitMinimumVolumeEllipsoid(const std::vector<Vec3> &points, const Mvee
         throw std::invalid_argument("fitMinimumVolumeEllipsoid: too many points");
 
     const std::size_t count = points.size();
-    // The mean as an offset from the first point, so that identical points give that point exactly.
-    Vec3 mean = Vec3::Zero();
-    for (const Vec3 &p : points)
-        mean += p - points.front();
-    mean = points.front() + mean / double(count);
-
+    const Vec3 origin = points.front();
     MveeResult result;
     result.candidates = count;
 
-    // Principal frame from the SVD of the centred points (not their covariance, whose smallest
-    // eigenvalues drown in rounding for nearly flat sets).
-    Eigen::MatrixX3d centred(Eigen::Index(count), 3);
+    // The affine hull: an SVD of the offsets from the first point (an input point, so that no rounded
+    // mean can lift a flat set off its plane), and the widths of the set along its singular vectors.
+    Eigen::MatrixX3d offsets(Eigen::Index(count), 3);
     for (std::size_t i = 0; i < count; ++i)
-        centred.row(Eigen::Index(i)) = (points[i] - mean).transpose();
-    const double magnitude = centred.cwiseAbs().maxCoeff();
-    Mat3 frame = Mat3::Identity();
+        offsets.row(Eigen::Index(i)) = (points[i] - origin).transpose();
+    const double magnitude = offsets.cwiseAbs().maxCoeff();
+    Mat3 hullFrame = Mat3::Identity();
     if (magnitude > 0.0)
+        hullFrame = Eigen::JacobiSVD<Eigen::MatrixX3d>(offsets / magnitude, Eigen::ComputeFullV).matrixV();
+    Vec3 width = Vec3::Zero();
     {
-        const Eigen::JacobiSVD<Eigen::MatrixX3d> svd(centred / magnitude, Eigen::ComputeFullV);
-        frame = svd.matrixV();
+        const Eigen::MatrixX3d local = offsets * hullFrame;
+        width = local.colwise().maxCoeff() - local.colwise().minCoeff();
     }
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (std::size_t i = 0; i < count; ++i)
-    {
-        const Vec3 local = frame.transpose() * (points[i] - mean);
-        lo = lo.cwiseMin(local);
-        hi = hi.cwiseMax(local);
-    }
-    const Vec3 width = hi - lo;
     const double extent = width.maxCoeff();
 
     // Kept directions first; their count is the dimension of the (numerical) affine hull.
     int order[3] = {0, 1, 2};
     std::stable_sort(order, order + 3, [&](int i, int j) { return width[i] > width[j]; });
+    // A width at the rounding level of the coordinates themselves is no width either: a set that is flat
+    // up to that level cannot be represented as thicker, and whitening it would amplify the rounding.
+    double coordinateMagnitude = 0.0;
+    for (const Vec3 &p : points)
+        coordinateMagnitude = std::max(coordinateMagnitude, p.cwiseAbs().maxCoeff());
+    const double roundingWidth = 64.0 * std::numeric_limits<double>::epsilon() * coordinateMagnitude;
     int dimension = 0;
     for (int j = 0; j < 3; ++j)
-        if (extent > 0.0 && width[order[j]] > kFlatRatio * extent)
+        if (extent > 0.0 && width[order[j]] > std::max(kFlatRatio * extent, roundingWidth))
             ++dimension;
     result.dimension = dimension;
 
     if (dimension == 0)
     {
-        // A single point (possibly repeated): a tiny ball on it.
-        const double radius = std::max(kPointRadius, 4.0 * std::numeric_limits<double>::epsilon() * mean.cwiseAbs().maxCoeff());
-        result.ellipsoid = Ellipsoid::fromAxes(mean, Mat3::Identity(), Vec3::Constant(radius));
+        // A single point (possibly repeated, or spread only at the rounding level): a tiny ball on it.
+        double spread = 0.0;
+        for (const Vec3 &p : points)
+            spread = std::max(spread, (p - origin).norm());
+        const double radius = std::max({kPointRadius, 4.0 * std::numeric_limits<double>::epsilon() * coordinateMagnitude, 2.0 * spread});
+        result.ellipsoid = Ellipsoid::fromAxes(origin, Mat3::Identity(), Vec3::Constant(radius));
         result.candidates = 1;
-        // Points that differ from the mean only by rounding are covered by the loop at the end.
     }
 
     Mat3 axes = Mat3::Identity();
     Vec3 semiAxes = Vec3::Ones();
-    Vec3 center = mean;
+    Vec3 center = origin;
     if (dimension > 0)
     {
-        // Whitened coordinates in the kept directions: y_j = (local_j - mid_j) / halfWidth_j, in [-1, 1].
-        Eigen::Matrix<double, 3, Eigen::Dynamic> kept(3, dimension);
-        Eigen::VectorXd mid(dimension), halfWidth(dimension);
+        // Coordinates in the hull, then its principal directions (an SVD of the centred coordinates)
+        // for whitening: y_j = (principal_j - mid_j) / halfWidth_j lies in [-1, 1] in every direction.
+        Eigen::Matrix<double, 3, Eigen::Dynamic> hullBasis(3, dimension);
         for (int j = 0; j < dimension; ++j)
-        {
-            kept.col(j) = frame.col(order[j]);
-            mid[j] = 0.5 * (lo[order[j]] + hi[order[j]]);
-            halfWidth[j] = 0.5 * width[order[j]];
-        }
-        auto whiten = [&](const Vec3 &p) {
-            return Eigen::VectorXd(((kept.transpose() * (p - mean)) - mid).cwiseQuotient(halfWidth));
-        };
+            hullBasis.col(j) = hullFrame.col(order[j]);
+        Eigen::MatrixXd inHull = offsets * hullBasis;
+        const Eigen::RowVectorXd hullMean = inHull.colwise().mean();
+        const Vec3 base = origin + hullBasis * hullMean.transpose();
+        inHull.rowwise() -= hullMean;
+        Eigen::MatrixXd principal = Eigen::MatrixXd::Identity(dimension, dimension);
+        if (dimension > 1)
+            principal = Eigen::JacobiSVD<Eigen::MatrixXd>(inHull / magnitude, Eigen::ComputeFullV).matrixV();
+        const Eigen::MatrixXd local = inHull * principal;
+        const Eigen::VectorXd lo = local.colwise().minCoeff().transpose(), hi = local.colwise().maxCoeff().transpose();
+        const Eigen::VectorXd mid = 0.5 * (lo + hi);
+        const Eigen::VectorXd halfWidth = (0.5 * (hi - lo)).cwiseMax(std::numeric_limits<double>::min());
+        const Eigen::Matrix<double, 3, Eigen::Dynamic> kept = hullBasis * principal;
+        auto whiten = [&](std::size_t i) { return Eigen::VectorXd((local.row(Eigen::Index(i)).transpose() - mid).cwiseQuotient(halfWidth)); };
 
         // The fitted ellipsoid in whitened coordinates as cy + gy z, |z| <= 1.
         Eigen::VectorXd cy = Eigen::VectorXd::Zero(dimension);
@@ -438,21 +441,21 @@ MveeResult fitMinimumVolumeEllipsoid(const std::vector<Vec3> &points, const Mvee
         {
             std::vector<Eigen::Vector2d> y(count);
             for (std::size_t i = 0; i < count; ++i)
-                y[i] = whiten(points[i]);
+                y[i] = whiten(i);
             adopt(fitWhitened<2>(y, options, result.candidates));
         }
         else
         {
             std::vector<Eigen::Vector3d> y(count);
             for (std::size_t i = 0; i < count; ++i)
-                y[i] = whiten(points[i]);
+                y[i] = whiten(i);
             adopt(fitWhitened<3>(y, options, result.candidates));
         }
         result.inflation = khachiyanInflation;
 
-        // Back to world coordinates: x = mean + kept (mid + diag(halfWidth) (cy + gy z)). The SVD of the
+        // Back to world coordinates: x = base + kept (mid + diag(halfWidth) (cy + gy z)). The SVD of the
         // 3 x k map gives the principal form directly, without forming an ill-conditioned shape matrix.
-        center = mean + kept * (mid + halfWidth.cwiseProduct(cy));
+        center = base + kept * (mid + halfWidth.cwiseProduct(cy));
         const Eigen::MatrixXd g = kept * halfWidth.asDiagonal() * gy;
         const Eigen::JacobiSVD<Eigen::MatrixXd> svd(g, Eigen::ComputeFullU);
         axes = svd.matrixU();
@@ -461,12 +464,13 @@ MveeResult fitMinimumVolumeEllipsoid(const std::vector<Vec3> &points, const Mvee
 
         if (dimension < 3)
         {
-            // Thickness for the missing directions, large enough (1e3 times the points' actual
-            // deviation from the hull) that a tiny growth of the in-hull axes absorbs the deviation.
+            // Thickness for the missing directions, large enough (100 times the points' actual
+            // deviation from the hull, rounding included) that growing the in-hull axes by at most a
+            // factor 1 + 1e-4 (in A) absorbs the deviation.
             double deviation = 0.0;
             for (const Vec3 &p : points)
                 deviation = std::max(deviation, (axes.rightCols(3 - dimension).transpose() * (p - center)).norm());
-            const double thickness = std::max(kThickness * extent, 1e3 * deviation);
+            const double thickness = std::max(kThickness * extent, 1e2 * deviation);
             double growth = 1.0;
             for (const Vec3 &p : points)
             {

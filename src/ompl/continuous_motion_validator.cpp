@@ -19,6 +19,7 @@ double rotationAngle(const Mat3 &r1, const Mat3 &r2)
 }
 
 constexpr std::size_t kMaxQueries = 100000;  // beyond this a motion is refused rather than certified
+constexpr std::size_t kMaxRefinementQueries = 5000;  // bracketing a known contact stops here
 }  // namespace
 
 ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInformationPtr &si,
@@ -99,13 +100,23 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
 
-    // Quick rejection at OMPL's discrete resolution, unless the first contact is asked for.
-    if (!refine)
+    // A pass of collision checks at OMPL's resolution: s2 first, as OMPL's discrete validator does,
+    // when only validity matters; from s1 onwards when the first contact is wanted, since then it
+    // only needs to be searched for before the first colliding sample.
+    const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
+    double end = 1.0;  // the search for the first contact stops here
+    bool contactKnown = false;
+    for (unsigned i = 1; i <= n; ++i)
     {
-        const unsigned n = space->validSegmentCount(s1, s2);
-        for (unsigned k = n; k >= 1; --k)  // s2 first, as OMPL's discrete validator does
-            if (validity_->poseCollides(poseAt(double(k) / n)))
+        const unsigned k = refine ? i : n + 1 - i;
+        if (validity_->poseCollides(poseAt(double(k) / n)))
+        {
+            if (!refine)
                 return contact(0.0, double(k) / n);
+            end = double(k) / n;
+            contactKnown = true;
+            break;
+        }
     }
 
     const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
@@ -125,18 +136,23 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     {
         double a, b;
     };
-    std::vector<Interval> pending{{0.0, 1.0}};
-    double certified = 0.0, contactAt = 2.0;
+    // Start from OMPL's segments rather than [0, 1]: short intervals need small clearances, which
+    // the proximity query settles quickly.
+    std::vector<Interval> pending;
+    const unsigned segments = std::max(1u, unsigned(std::ceil(end * n - 1e-9)));
+    for (unsigned k = segments; k >= 1; --k)
+        pending.push_back({end * double(k - 1) / segments, end * double(k) / segments});
+    double certified = 0.0, contactAt = contactKnown ? end : 2.0;
     std::size_t queries = 0;
-    while (!pending.empty())
+    while (!pending.empty() && !(contactAt <= 1.0 && contactAt - certified <= contactTolerance_))
     {
         const Interval iv = pending.back();
         pending.pop_back();
         const double mid = 0.5 * (iv.a + iv.b);
         const double needed = speed * 0.5 * (iv.b - iv.a);
         const RigidTransform pose = poseAt(mid);
-        if (++queries > kMaxQueries)
-            break;  // refused
+        if (++queries > (contactAt <= 1.0 ? kMaxRefinementQueries : kMaxQueries))
+            break;  // refused, or the bracket is left wider than the tolerance
         if (!validity_->poseWithinDistance(pose, needed))
         {
             certified = iv.b;
@@ -154,7 +170,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         // Before any contact is seen, a clearance this small is refused rather than chased. Once a
         // contact is bracketed, splitting goes on: near a slow (grazing) approach the certifiable
         // intervals shrink well below the tolerance before the bracket does.
-        if (contactAt > 1.0 ? needed < minimumClearance_ : iv.b - iv.a < 1e-4 * contactTolerance_)
+        if (contactAt > 1.0 ? needed < minimumClearance_ : iv.b - iv.a < 1e-3 * contactTolerance_)
             break;
         pending.push_back({mid, iv.b});
         pending.push_back({iv.a, mid});

@@ -108,8 +108,12 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
     {
         const BoundingBox box = problem.world.mesh.bounds();
         const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
-        si->setMotionValidator(std::make_shared<ContinuousMotionValidator>(
-            si, planning.validity, problem.robot.mesh.radiusAboutOrigin(), scale));
+        auto validator = std::make_shared<ContinuousMotionValidator>(si, planning.validity,
+                                                                     problem.robot.mesh.radiusAboutOrigin(), scale);
+        // Planners use the last valid state only to keep part of a blocked motion; bracketing the
+        // contact to 1e-3 of the motion keeps that cheap (check-motion and the API use 1e-6).
+        validator->setContactTolerance(1e-3);
+        si->setMotionValidator(validator);
     }
     else
         si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));

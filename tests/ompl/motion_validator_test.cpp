@@ -89,7 +89,8 @@ TEST(MotionValidator, DiscreteTunnelsThroughAThinWallContinuousDoesNot)
     ASSERT_TRUE(si->isValid(b.get()));
     ob::DiscreteMotionValidator discrete(si);
     EXPECT_TRUE(discrete.checkMotion(a.get(), b.get())) << "the discrete validator was expected to tunnel";
-    const auto &continuous = *si->getMotionValidator();
+    auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    continuous.setContactTolerance(1e-6);  // the planning setup uses 1e-3
     EXPECT_FALSE(continuous.checkMotion(a.get(), b.get()));
     std::pair<ob::State *, double> last{si->allocState(), 0.0};
     EXPECT_FALSE(continuous.checkMotion(a.get(), b.get(), last));
@@ -131,7 +132,8 @@ TEST(MotionValidator, RotationAloneCannotSweepPastAPost)
     EXPECT_TRUE(discrete.checkMotion(a.get(), b.get())) << "the discrete validator was expected to miss the post";
     const auto reference = makeChecker("bruteforce", probe.scene);
     EXPECT_LE(bruteForceFirstContact(planning, *reference, a.get(), b.get(), 2000), 1.0);
-    const auto &continuous = dynamic_cast<const ContinuousMotionValidator &>(*si->getMotionValidator());
+    auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    continuous.setContactTolerance(1e-6);
     const auto report = continuous.checkMotionDetailed(a.get(), b.get());
     EXPECT_FALSE(report.free);
     ASSERT_TRUE(report.contactFound);
@@ -145,7 +147,8 @@ TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
     PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
     planning.setup->setup();
     const auto si = planning.setup->getSpaceInformation();
-    const auto &validator = dynamic_cast<const ContinuousMotionValidator &>(*si->getMotionValidator());
+    auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    validator.setContactTolerance(1e-6);
     const auto reference = makeChecker("bruteforce", problem.scene);
     auto sampler = si->allocStateSampler();
     ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Micro-benchmarks of the exact LP narrow phase: time per intersection test of two convex
+// pieces with 8, 20, 64 and 256 faces (hulls of random points on a sphere, so every point is a
+// vertex and a hull of V points has 2V - 4 triangular faces), for the slack LP (4D Seidel, the
+// library's test), the review's plain 3D primal feasibility LP, and the separating-axis test.
+//
+//   build/bench/hybridcd_bench_lp_micro --benchmark_format=json > lp_micro.json
+#include "hybridcd/narrowphase/convex_piece.h"
+#include "hybridcd/narrowphase/linear_program.h"
+
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <utility>
+#include <vector>
+
+using namespace hcd;
+
+namespace
+{
+constexpr std::size_t kPairs = 256;
+
+Mat3 randomRotation(std::mt19937_64 &rng)
+{
+    std::normal_distribution<double> n;
+    return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+}
+
+Vec3 randomUnit(std::mt19937_64 &rng)
+{
+    std::normal_distribution<double> n;
+    return Vec3(n(rng), n(rng), n(rng)).normalized();
+}
+
+// Pairs of pieces with `faces` faces each, the second at a distance uniform in [0, 2.8] from the
+// first (radius 1), so that about half of the pairs intersect.
+const std::vector<std::pair<ConvexPiece, ConvexPiece>> &piecePairs(int faces)
+{
+    static std::vector<std::pair<ConvexPiece, ConvexPiece>> cache[4];
+    const int slot = faces == 8 ? 0 : faces == 20 ? 1 : faces == 64 ? 2 : 3;
+    auto &pairs = cache[slot];
+    if (pairs.empty())
+    {
+        std::mt19937_64 rng{std::uint64_t(faces)};
+        std::uniform_real_distribution<double> distance(0.0, 2.8);
+        const auto piece = [&](const Vec3 &at) {
+            std::vector<Vec3> points;
+            for (int i = 0; i < faces / 2 + 2; ++i)
+                points.push_back(randomUnit(rng));
+            return ConvexPiece::hullOf(points).transformed({randomRotation(rng), at});
+        };
+        for (std::size_t i = 0; i < kPairs; ++i)
+        {
+            ConvexPiece a = piece(Vec3::Zero());
+            ConvexPiece b = piece(distance(rng) * randomUnit(rng));
+            pairs.emplace_back(std::move(a), std::move(b));
+        }
+    }
+    return pairs;
+}
+
+template <typename Test>
+void runPairs(benchmark::State &state, Test test)
+{
+    const auto &pairs = piecePairs(int(state.range(0)));
+    std::size_t i = 0, hits = 0, faces = 0;
+    for (const auto &p : pairs)
+        faces += p.first.normals.size() + p.second.normals.size();
+    for (auto _ : state)
+    {
+        const auto &p = pairs[i % kPairs];
+        hits += test(p.first, p.second);
+        ++i;
+    }
+    state.counters["hit fraction"] = double(hits) / double(i);
+    state.counters["faces per piece"] = double(faces) / double(2 * kPairs);
+}
+
+void BM_LpIntersect(benchmark::State &state)
+{
+    runPairs(state, [](const ConvexPiece &a, const ConvexPiece &b) { return intersectConvexPieces(a, b).intersecting; });
+}
+BENCHMARK(BM_LpIntersect)->Arg(8)->Arg(20)->Arg(64)->Arg(256);
+
+void BM_PrimalFeasibility(benchmark::State &state)
+{
+    runPairs(state, [](const ConvexPiece &a, const ConvexPiece &b) { return convexPiecesIntersectPrimal(a, b); });
+}
+BENCHMARK(BM_PrimalFeasibility)->Arg(8)->Arg(20)->Arg(64)->Arg(256);
+
+void BM_SatIntersect(benchmark::State &state)
+{
+    runPairs(state, [](const ConvexPiece &a, const ConvexPiece &b) { return convexPiecesIntersectSat(a, b); });
+}
+BENCHMARK(BM_SatIntersect)->Arg(8)->Arg(20)->Arg(64)->Arg(256);
+}  // namespace

@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The exact narrow phase by linear programming (review, section 4.1): two convex pieces intersect
+// exactly when some point satisfies the inequalities of both, a linear feasibility problem.
+//
+// Formulation. The review maximises an arbitrary objective over the union of both pieces'
+// inequalities n_i . x <= d_i and reads feasibility off the solver. We instead add a slack t and
+//
+//     maximise t  subject to  n_i . x + t <= d_i  for every face of both pieces     (x, t) in R^4.
+//
+// With unit normals t is the radius of the largest ball around x inside both pieces, so the
+// optimum answers the question and more: t* >= 0 means intersecting (touching when t* = 0), and
+// the optimal x is a well-centred witness (the Chebyshev centre of the intersection) rather than
+// a corner. The problem is always feasible (t may be very negative), so the solver never has to
+// decide infeasibility, the part of LP that is most fragile in floating point. When t* < 0 the
+// LP dual gives a certificate of disjointness: multipliers lambda >= 0 on the optimal basis with
+// sum lambda_i n_i = 0 and sum lambda_i = 1; the A part w = sum_{i in A} lambda_i n_i satisfies
+// w . x <= sum_{i in A} lambda_i d_i on A and w . x >= -sum_{i in B} lambda_i d_i on B, and
+// these bounds differ by -t* > 0: w is a separating direction with gap at least -t*. Section 5's
+// penetration formulation (a time variable) is the same shape with one more dimension, which is
+// why the solver below is generic in the dimension.
+//
+// Solver. Seidel's randomized incremental algorithm (Seidel 1991): take the constraints in a
+// random order keeping the optimum of those seen so far; when a new constraint is violated the
+// new optimum lies on its hyperplane, found by the same algorithm one dimension down on the
+// constraints seen so far, substituted into that hyperplane. Expected time O(d! n), linear in
+// the number of faces for fixed d, with no setup: for the few dozen faces of a convex piece it
+// beats general-purpose LP codes by orders of magnitude. The order comes from a seeded shuffle,
+// so results are deterministic.
+//
+// Robustness. Coordinates are first translated to the pieces' mid-centroid and scaled to unit
+// size, and each constraint's normal is normalised, so that one absolute tolerance means the
+// same at every scale (1e6 and 1e-6 alike). A box |x_i| <= 4 (four times the data's extent,
+// never active at the optimum of intersecting pieces) keeps every subproblem bounded without
+// special cases. The hyperplane substitution pivots on the largest coefficient, so substituted
+// coefficients never grow by more than a factor of two per level; violations are therefore
+// measured in the original constraints' units at every level. A constraint that becomes
+// (numerically) constant in a subproblem, as parallel and coincident faces do, is checked as a
+// constant rather than divided by. Every answer is certified afterwards in the original frame:
+// the witness against every inequality of both pieces, the separating plane against every vertex
+// of both; if the dual plane fails, a separating-axis search over face normals and edge-edge
+// cross products (exact for polytopes) finds one. Touching counts as intersecting: the pieces
+// intersect when the witness violates no inequality by more than 1e-9 of the coordinates'
+// magnitude.
+#pragma once
+
+#include "hybridcd/narrowphase/convex_piece.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace hcd
+{
+/// One linear inequality a . x <= b in R^D.
+template <int D>
+struct Halfspace
+{
+    Eigen::Matrix<double, D, 1> a = Eigen::Matrix<double, D, 1>::Zero();
+    double b = 0.0;
+};
+
+/// Whether a small LP has a solution (it is never unbounded: the box bounds every variable).
+enum class LpStatus
+{
+    Optimal,
+    Infeasible
+};
+
+/// The basis entries that stand for the box: x_j >= lower_j and x_j <= upper_j.
+constexpr int lpLowerBoundId(int j) { return -1 - 2 * j; }
+constexpr int lpUpperBoundId(int j) { return -2 - 2 * j; }
+
+/// Result of `solveSmallLp`.
+template <int D>
+struct LpSolution
+{
+    LpStatus status = LpStatus::Infeasible;
+    /// An optimal point (meaningful when `status` is Optimal).
+    Eigen::Matrix<double, D, 1> x = Eigen::Matrix<double, D, 1>::Zero();
+    /// The D constraints whose hyperplanes meet at `x`: indices into the constraint list, or
+    /// lpLowerBoundId(j) / lpUpperBoundId(j) for the box. Their dual multipliers are the LP's.
+    std::array<int, D> basis{};
+};
+
+/// Maximises objective . x subject to every constraint and lower <= x <= upper, by Seidel's
+/// algorithm (expected O(D! n)). Constraints are normalised to unit normals first (constraints
+/// with a zero normal are checked as constants); `tolerance` is then an absolute distance: a
+/// constraint counts as satisfied when a.x - b <= tolerance, and the LP as infeasible only when
+/// no point comes within `tolerance` of every constraint. The caller scales its coordinates to
+/// order one so that the tolerance is meaningful. Constraints are taken in a random order
+/// (deterministic for a given `seed`) or, when `orderHint` is given, in increasing order of their
+/// slack b - a . hint at that point: with a hint near the optimum the constraints that end up
+/// tight come first and later ones rarely trigger subproblems (a heuristic: the expected bound
+/// is only proven for the random order; ties go by index).
+/// Instantiated for D = 1, 2, 3, 4.
+template <int D>
+LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const Eigen::Matrix<double, D, 1> &objective,
+                           const Eigen::Matrix<double, D, 1> &lower, const Eigen::Matrix<double, D, 1> &upper,
+                           double tolerance, const Eigen::Matrix<double, D, 1> *orderHint = nullptr,
+                           std::uint64_t seed = 0x2545F4914F6CDD1DULL);
+
+extern template LpSolution<1> solveSmallLp<1>(const std::vector<Halfspace<1>> &, const Eigen::Matrix<double, 1, 1> &,
+                                              const Eigen::Matrix<double, 1, 1> &, const Eigen::Matrix<double, 1, 1> &,
+                                              double, const Eigen::Matrix<double, 1, 1> *, std::uint64_t);
+extern template LpSolution<2> solveSmallLp<2>(const std::vector<Halfspace<2>> &, const Eigen::Matrix<double, 2, 1> &,
+                                              const Eigen::Matrix<double, 2, 1> &, const Eigen::Matrix<double, 2, 1> &,
+                                              double, const Eigen::Matrix<double, 2, 1> *, std::uint64_t);
+extern template LpSolution<3> solveSmallLp<3>(const std::vector<Halfspace<3>> &, const Eigen::Matrix<double, 3, 1> &,
+                                              const Eigen::Matrix<double, 3, 1> &, const Eigen::Matrix<double, 3, 1> &,
+                                              double, const Eigen::Matrix<double, 3, 1> *, std::uint64_t);
+extern template LpSolution<4> solveSmallLp<4>(const std::vector<Halfspace<4>> &, const Eigen::Matrix<double, 4, 1> &,
+                                              const Eigen::Matrix<double, 4, 1> &, const Eigen::Matrix<double, 4, 1> &,
+                                              double, const Eigen::Matrix<double, 4, 1> *, std::uint64_t);
+
+/// The narrow phase's tolerance, relative to the largest absolute vertex coordinate of the pair.
+constexpr double kNarrowPhaseRelativeTolerance = 1e-9;
+
+/// Outcome of `intersectConvexPieces`, every field in the pieces' common frame and units.
+struct IntersectionResult
+{
+    /// How the answer was established (for statistics; every answer is certified as stated).
+    enum class Certificate
+    {
+        Witness,       ///< intersecting: `witness` satisfies both pieces' inequalities
+        LpDual,        ///< disjoint: plane from the LP's dual multipliers, checked on all vertices
+        AxisSearch,    ///< disjoint: plane from the separating-axis search, checked on all vertices
+        Conservative,  ///< the LP found no witness but no separating plane was found either:
+                       ///< reported intersecting; `witness` is the LP's best point (numerical
+                       ///< corner case, never seen in the tests)
+    };
+
+    /// True when the pieces intersect or touch (within the relative tolerance).
+    bool intersecting = false;
+    /// When intersecting: a point in both pieces: every inequality of both holds within 1e-9 of
+    /// the coordinates' magnitude. It is the centre of a largest ball inside both.
+    Vec3 witness = Vec3::Zero();
+    /// When disjoint: a unit normal n and offset o with n.x <= o for every vertex of A and
+    /// n.x >= o for every vertex of B (as evaluated in double precision).
+    Vec3 separatingNormal = Vec3::Zero();
+    double separatingOffset = 0.0;
+    /// min_i (d_i - n_i . witness) over both pieces, i.e. the LP's optimum t*: when
+    /// intersecting, the radius of a ball around the witness inside both (0 when touching or when
+    /// a piece is flat); when disjoint, negative, and -t* is at most the distance between them.
+    double depth = 0.0;
+    Certificate certificate = Certificate::Witness;
+};
+
+/// Exact intersection test of two convex pieces given in one frame by the slack LP above (a 4D
+/// Seidel LP over the faces of both). Touching pieces count as intersecting. Preconditions:
+/// both pieces non-empty, as `ConvexPiece::hullOf` (or `transformed`) builds them.
+IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b);
+
+/// The review's plain primal: feasibility of the union of both pieces' inequalities as a 3D LP
+/// (objective x + y + z, random constraint order), the same tolerance applied to the
+/// constraints. Cheaper than the slack LP (three dimensions instead of four) but it decides by
+/// the solver's infeasibility test and gives neither a centred witness nor a separating plane;
+/// kept to measure against the slack formulation (bench/micro/lp_micro.cpp).
+bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece &b);
+
+/// The separating-axis test: the largest gap, over the candidate axes, between the projections
+/// of the pieces' vertices (face normals of both, cross products of every pair of edges, and for
+/// pieces of dimension <= 1 the extra axes their degenerate Minkowski difference needs), which
+/// is positive exactly when the pieces are disjoint and, if negative, minus the smallest overlap.
+/// `axis`, when given, receives the best unit axis, oriented so that A projects below B.
+double separatingAxisGap(const ConvexPiece &a, const ConvexPiece &b, Vec3 *axis = nullptr);
+
+/// Reference test by separating axes (O(E_a E_b (V_a + V_b))): intersecting (or touching) when
+/// no axis separates the pieces by more than 1e-9 of the coordinates' magnitude.
+bool convexPiecesIntersectSat(const ConvexPiece &a, const ConvexPiece &b);
+}  // namespace hcd
