@@ -78,7 +78,8 @@ void runPairs(benchmark::State &state, Test test)
 
 void BM_LpIntersect(benchmark::State &state)
 {
-    runPairs(state, [](const ConvexPiece &a, const ConvexPiece &b) { return intersectConvexPieces(a, b).intersecting; });
+    runPairs(state,
+             [](const ConvexPiece &a, const ConvexPiece &b) { return intersectConvexPieces(a, b).intersecting; });
 }
 BENCHMARK(BM_LpIntersect)->Arg(8)->Arg(20)->Arg(64)->Arg(256);
 

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/bv/ellipsoid.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <nlopt.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <vector>
@@ -28,19 +29,42 @@ struct ContactValue
     bool ok = false;
 };
 
-ContactValue contactFunction(const Mat3 &aInverse, const Mat3 &bInverse, const Vec3 &d, double l)
+/// `la`, `lb`: A^{-1} = la la^T, B^{-1} = lb lb^T (columns: semi-axis vectors). M(l) is never formed:
+/// for thin ellipsoids (semi-axis ratios down to 1e-9, as fitted to flat sets) its small eigenvalues
+/// would drown in the rounding of its large ones. Instead M = C C^T with the 6 x 3 matrix
+/// C^T = [sqrt(1-l) la, sqrt(l) lb]^T, whose Householder QR with rows sorted by decreasing norm and
+/// column pivoting is row-wise backward stable (Cox & Higham): the R factor represents M as well as
+/// the semi-axes themselves do.
+ContactValue contactFunction(const Mat3 &la, const Mat3 &lb, const Vec3 &d, double l)
 {
+    using Rows = Eigen::Matrix<double, 6, 3>;
     ContactValue value;
-    const Mat3 m = (1.0 - l) * aInverse + l * bInverse;
-    const Eigen::LDLT<Mat3> ldlt(m);
-    if (ldlt.info() != Eigen::Success)
+    Rows rows;
+    rows.topRows<3>() = std::sqrt(1.0 - l) * la.transpose();
+    rows.bottomRows<3>() = std::sqrt(l) * lb.transpose();
+    std::array<int, 6> order{0, 1, 2, 3, 4, 5};
+    std::array<double, 6> norms{};
+    for (int i = 0; i < 6; ++i)
+        norms[std::size_t(i)] = rows.row(i).squaredNorm();
+    std::sort(order.begin(), order.end(), [&](int i, int j) { return norms[std::size_t(i)] > norms[std::size_t(j)]; });
+    Rows sorted;
+    for (int i = 0; i < 6; ++i)
+        sorted.row(i) = rows.row(order[std::size_t(i)]);
+    const Eigen::ColPivHouseholderQR<Rows> qr(sorted);
+    const Mat3 r = qr.matrixR().topLeftCorner<3, 3>().triangularView<Eigen::Upper>();
+    if (!(r.diagonal().cwiseAbs().minCoeff() > 0.0))
         return value;
-    const Vec3 x = ldlt.solve(d);
+    // M = P R^T R P^T, so d^T M^{-1} d = |R^{-T} P^T d|^2 and M^{-1} d = P R^{-1} R^{-T} P^T d.
+    const auto &permutation = qr.colsPermutation();
+    auto halfSolve = [&](const Vec3 &v) { return Vec3(r.transpose().triangularView<Eigen::Lower>().solve(permutation.transpose() * v)); };
+    const Vec3 y = halfSolve(d);
+    const Vec3 x = permutation * Vec3(r.triangularView<Eigen::Upper>().solve(y));
     // dM/dl = B^{-1} - A^{-1}; g = d^T M^{-1} d, g' = -x^T M' x, g'' = 2 (M' x)^T M^{-1} (M' x).
-    const Vec3 mx = (bInverse - aInverse) * x;
-    const double g = d.dot(x);
-    const double g1 = -x.dot(mx);
-    const double g2 = 2.0 * mx.dot(ldlt.solve(mx));
+    const Vec3 ax = la.transpose() * x, bx = lb.transpose() * x;
+    const Vec3 mx = lb * bx - la * ax;
+    const double g = y.squaredNorm();
+    const double g1 = ax.squaredNorm() - bx.squaredNorm();
+    const double g2 = 2.0 * halfSolve(mx).squaredNorm();
     const double w = l * (1.0 - l);
     value.f = w * g;
     value.df = (1.0 - 2.0 * l) * g + w * g1;
@@ -72,8 +96,8 @@ struct ContactSearch
 ContactSearch maximiseContact(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &d, bool decide)
 {
     ContactSearch search;
-    const Mat3 aInverse = a.inverseShape();
-    const Mat3 bInverse = b.inverseShape();
+    const Mat3 la = a.axes * a.semiAxes.asDiagonal();
+    const Mat3 lb = b.axes * b.semiAxes.asDiagonal();
     // For two balls the maximiser is ra / (ra + rb); the support radii along d play that part here.
     const double sa = a.supportRadius(d), sb = b.supportRadius(d);
     double l = (sa + sb > 0.0) ? sa / (sa + sb) : 0.5;
@@ -81,7 +105,7 @@ ContactSearch maximiseContact(const Ellipsoid &a, const Ellipsoid &b, const Vec3
     double lo = 0.0, hi = 1.0;
     for (int iteration = 0; iteration < 100; ++iteration)
     {
-        const ContactValue value = contactFunction(aInverse, bInverse, d, l);
+        const ContactValue value = contactFunction(la, lb, d, l);
         if (!value.ok)
         {
             // Only rounding makes M(l) look singular; retreat to the middle of the bracket.
@@ -175,8 +199,30 @@ Mat3 Ellipsoid::inverseShape() const
     return 0.5 * (inverse + inverse.transpose());
 }
 
-bool ellipsoidsOverlap(const Ellipsoid &a, const Ellipsoid &b)
+namespace
 {
+/// A fixed order on ellipsoids, so that the overlap test gives the same answer for (a, b) and (b, a)
+/// even for pairs within its rounding margin.
+bool comesFirst(const Ellipsoid &a, const Ellipsoid &b)
+{
+    for (int i = 0; i < 3; ++i)
+        if (a.center[i] != b.center[i])
+            return a.center[i] < b.center[i];
+    for (int i = 0; i < 3; ++i)
+        if (a.semiAxes[i] != b.semiAxes[i])
+            return a.semiAxes[i] < b.semiAxes[i];
+    for (int i = 0; i < 9; ++i)
+        if (a.axes(i) != b.axes(i))
+            return a.axes(i) < b.axes(i);
+    return true;
+}
+}  // namespace
+
+bool ellipsoidsOverlap(const Ellipsoid &first, const Ellipsoid &second)
+{
+    const bool inOrder = comesFirst(first, second);
+    const Ellipsoid &a = inOrder ? first : second;
+    const Ellipsoid &b = inOrder ? second : first;
     const Vec3 d = b.center - a.center;
     const double distance = d.norm();
     // Each ellipsoid lies in the ball of its largest semi-axis about its centre.

@@ -332,7 +332,35 @@ DesignFit<K> fitWhitened(const std::vector<Eigen::Matrix<double, K, 1>> &y, cons
             candidates[i] = int(i);
     }
     candidateCount = candidates.size();
-    return fitDesign<K>(y, std::move(candidates), options);
+    using MatK = Eigen::Matrix<double, K, K>;
+    auto usable = [](const DesignFit<K> &fit) {
+        return fit.center.allFinite() && fit.covariance.allFinite() && Eigen::LLT<MatK>(fit.covariance).info() == Eigen::Success &&
+               std::isfinite(fit.maxValue) && fit.maxValue > 0.0;
+    };
+    DesignFit<K> fit = fitDesign<K>(y, std::move(candidates), options);
+    if (usable(fit))
+        return fit;
+    // Only rounding could get here (the points span R^K): retry plainly on all points, and failing
+    // that take uniform weights, whose ellipsoid is valid though far from minimal.
+    MveeOptions plain = options;
+    plain.cardinalityReduction = false;
+    std::vector<int> all(y.size());
+    for (std::size_t i = 0; i < y.size(); ++i)
+        all[i] = int(i);
+    fit = fitDesign<K>(y, all, plain);
+    if (usable(fit))
+        return fit;
+    fit.center.setZero();
+    for (const auto &p : y)
+        fit.center += p / double(y.size());
+    fit.covariance.setZero();
+    for (const auto &p : y)
+        fit.covariance += (p - fit.center) * (p - fit.center).transpose() / double(y.size());
+    const Eigen::LLT<MatK> llt(fit.covariance);
+    fit.maxValue = 0.0;
+    for (const auto &p : y)
+        fit.maxValue = std::max(fit.maxValue, llt.matrixL().solve(Eigen::Matrix<double, K, 1>(p - fit.center)).squaredNorm());
+    return fit;
 }
 }  // namespace
 

@@ -100,6 +100,6 @@ std::vector<HierarchyReport> FclChecker::hierarchies() const
 
 void registerFclChecker()
 {
-    registerChecker("fcl", [](const CollisionScene &s) { return std::make_unique<FclChecker>(s); });
+    registerChecker("fcl", [](const CollisionScene &s) { return std::make_unique<FclChecker>(s); }, true);
 }
 }  // namespace hcd

@@ -25,10 +25,16 @@ std::vector<std::uint32_t> canonicalVertices(const TriangleMesh &mesh)
     const std::vector<Vec3> &v = mesh.vertices;
     std::vector<std::uint32_t> order(v.size());
     std::iota(order.begin(), order.end(), 0u);
+    // NaN sorts after every number, so the order stays strict-weak (NaN vertices merge with none).
+    const auto less = [](double a, double b) { return !std::isnan(a) && (std::isnan(b) || a < b); };
     std::sort(order.begin(), order.end(), [&](std::uint32_t i, std::uint32_t j) {
         for (int k = 0; k < 3; ++k)
-            if (v[i][k] != v[j][k])
-                return v[i][k] < v[j][k];
+        {
+            if (less(v[i][k], v[j][k]))
+                return true;
+            if (less(v[j][k], v[i][k]))
+                return false;
+        }
         return i < j;
     });
     std::vector<std::uint32_t> canonical(v.size());

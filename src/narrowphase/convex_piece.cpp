@@ -177,8 +177,8 @@ ConvexPiece qhullPiece(const std::vector<Vec3> &points)
     qhT *qh = &qhStorage;
     qh_zero(qh, qhullErrorSink());
     char command[] = "qhull";
-    const int exitCode = qh_new_qhull(qh, 3, int(points.size()), coordinates.data(), False, command, nullptr,
-                                      qhullErrorSink());
+    const int exitCode =
+        qh_new_qhull(qh, 3, int(points.size()), coordinates.data(), False, command, nullptr, qhullErrorSink());
     ConvexPiece piece;
     if (exitCode == 0)
     {
@@ -334,5 +334,8 @@ double ConvexPiece::maxViolation(const Vec3 &p) const
     return worst;
 }
 
-double ConvexPiece::magnitude() const { return maxAbsCoordinate(vertices); }
+double ConvexPiece::magnitude() const
+{
+    return maxAbsCoordinate(vertices);
+}
 }  // namespace hcd

@@ -15,15 +15,22 @@ namespace
 struct Registry
 {
     std::mutex mutex;
-    std::vector<std::pair<std::string, CheckerFactory>> entries;
+    struct Entry
+    {
+        std::string name;
+        CheckerFactory factory;
+        bool surfaceOnly;
+    };
+    std::vector<Entry> entries;
 };
 
 // Built on first use with the core checkers, so no set-up call can be forgotten.
 Registry &registry()
 {
     static Registry r{{},
-                      {{"obb", [](const CollisionScene &s) { return std::make_unique<ObbTreeChecker>(s, "obb"); }},
-                       {"bruteforce", [](const CollisionScene &s) { return std::make_unique<BruteForceChecker>(s); }}}};
+                      {{"obb", [](const CollisionScene &s) { return std::make_unique<ObbTreeChecker>(s, "obb"); }, false},
+                       {"bruteforce", [](const CollisionScene &s) { return std::make_unique<BruteForceChecker>(s); },
+                        false}}};
     return r;
 }
 }  // namespace
@@ -34,19 +41,24 @@ std::vector<std::string> checkerNames()
     std::lock_guard<std::mutex> lock(r.mutex);
     std::vector<std::string> names;
     for (const auto &e : r.entries)
-        names.push_back(e.first);
+        names.push_back(e.name);
     return names;
 }
 
-std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const CollisionScene &scene)
+std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const CollisionScene &scene,
+                                              ContactSemantics semantics)
 {
     CheckerFactory factory;
+    bool surfaceOnly = false;
     {
         Registry &r = registry();
         std::lock_guard<std::mutex> lock(r.mutex);
         for (const auto &e : r.entries)
-            if (e.first == name)
-                factory = e.second;
+            if (e.name == name)
+            {
+                factory = e.factory;
+                surfaceOnly = e.surfaceOnly;
+            }
     }
     if (!factory)
     {
@@ -55,19 +67,22 @@ std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const Col
             list += (list.empty() ? "" : ", ") + n;
         throw std::invalid_argument("unknown checker '" + name + "'; valid checkers: " + list);
     }
-    return factory(scene);
+    if (semantics == ContactSemantics::SurfaceOnly || surfaceOnly)
+        return factory(scene);
+    return std::make_unique<SolidSemanticsChecker>(factory(scene), scene);
 }
 
-void registerChecker(const std::string &name, CheckerFactory factory)
+void registerChecker(const std::string &name, CheckerFactory factory, bool surfaceOnly)
 {
     Registry &r = registry();
     std::lock_guard<std::mutex> lock(r.mutex);
     for (auto &e : r.entries)
-        if (e.first == name)
+        if (e.name == name)
         {
-            e.second = std::move(factory);
+            e.factory = std::move(factory);
+            e.surfaceOnly = surfaceOnly;
             return;
         }
-    r.entries.emplace_back(name, std::move(factory));
+    r.entries.push_back({name, std::move(factory), surfaceOnly});
 }
 }  // namespace hcd

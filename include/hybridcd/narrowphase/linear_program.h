@@ -25,7 +25,11 @@
 // constraints seen so far, substituted into that hyperplane. Expected time O(d! n), linear in
 // the number of faces for fixed d, with no setup: for the few dozen faces of a convex piece it
 // beats general-purpose LP codes by orders of magnitude. The order comes from a seeded shuffle,
-// so results are deterministic.
+// so results are deterministic. The narrow phase instead takes the faces in increasing order of
+// their slack at the point between the two centroids: the faces that end up tight then come
+// first, and late violations, which cost a subproblem over all earlier faces, become rare (5 to
+// 8 times fewer subproblem rows; about 5 us for two 20-face pieces, against 21 us in random
+// order). The two-dimensional level solves its one-dimensional subproblems in place.
 //
 // Robustness. Coordinates are first translated to the pieces' mid-centroid and scaled to unit
 // size, and each constraint's normal is normalised, so that one absolute tolerance means the
@@ -38,9 +42,17 @@
 // constant rather than divided by. Every answer is certified afterwards in the original frame:
 // the witness against every inequality of both pieces, the separating plane against every vertex
 // of both; if the dual plane fails, a separating-axis search over face normals and edge-edge
-// cross products (exact for polytopes) finds one. Touching counts as intersecting: the pieces
-// intersect when the witness violates no inequality by more than 1e-9 of the coordinates'
-// magnitude.
+// cross products (exact for polytopes) finds one.
+//
+// Touching. Touching counts as intersecting, with a tolerance of 1e-9 of the coordinates'
+// magnitude. The pieces intersect when the witness satisfies every inequality up to rounding
+// (t* >= -1e-13 relative), and are disjoint when it violates one by more than the tolerance (then
+// the distance exceeds it too). In between, the violation alone does not decide: near a sharp
+// vertex a point can be far from a piece yet violate its face planes only slightly, so the pieces
+// count as touching only when no plane separates their vertices by more than the tolerance either
+// (the dual plane, else the separating-axis search), which is the reference test's criterion.
+// Only pairs within about a millionth of their size of touching, and not touching up to rounding,
+// fall in that band, so the search's cost (quadratic in the number of edges) is rarely paid.
 #pragma once
 
 #include "hybridcd/narrowphase/convex_piece.h"
@@ -69,8 +81,14 @@ enum class LpStatus
 };
 
 /// The basis entries that stand for the box: x_j >= lower_j and x_j <= upper_j.
-constexpr int lpLowerBoundId(int j) { return -1 - 2 * j; }
-constexpr int lpUpperBoundId(int j) { return -2 - 2 * j; }
+constexpr int lpLowerBoundId(int j)
+{
+    return -1 - 2 * j;
+}
+constexpr int lpUpperBoundId(int j)
+{
+    return -2 - 2 * j;
+}
 
 /// Result of `solveSmallLp`.
 template <int D>
@@ -126,12 +144,15 @@ struct IntersectionResult
         Witness,       ///< intersecting: `witness` satisfies both pieces' inequalities
         LpDual,        ///< disjoint: plane from the LP's dual multipliers, checked on all vertices
         AxisSearch,    ///< disjoint: plane from the separating-axis search, checked on all vertices
+                       ///< (when the dual plane fails or the LP's answer is within the tolerance)
         Conservative,  ///< the LP found no witness but no separating plane was found either:
                        ///< reported intersecting; `witness` is the LP's best point (numerical
                        ///< corner case, never seen in the tests)
     };
 
-    /// True when the pieces intersect or touch (within the relative tolerance).
+    /// True when the pieces intersect or touch: the witness violates no inequality by more than
+    /// the tolerance (1e-9 of the largest absolute vertex coordinate) and no plane separates the
+    /// pieces' vertices by more than it.
     bool intersecting = false;
     /// When intersecting: a point in both pieces: every inequality of both holds within 1e-9 of
     /// the coordinates' magnitude. It is the centre of a largest ball inside both.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "hybridcd/query/collision_checker.h"
+#include "hybridcd/query/solid_semantics_checker.h"
 
 #include <functional>
 #include <memory>
@@ -15,10 +16,13 @@ namespace hcd
 std::vector<std::string> checkerNames();
 
 /// Builds the named checker over `scene`; throws std::invalid_argument listing the valid names
-/// when `name` is unknown.
-std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const CollisionScene &scene);
+/// when `name` is unknown. With ContactSemantics::Solid (the default) closed components are solids
+/// (SolidSemanticsChecker); checkers registered as surface-only (FCL) keep their own semantics.
+std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const CollisionScene &scene,
+                                              ContactSemantics semantics = ContactSemantics::Solid);
 
 /// Lets optional layers (such as the FCL adapter) add checkers by name.
 using CheckerFactory = std::function<std::unique_ptr<CollisionChecker>(const CollisionScene &)>;
-void registerChecker(const std::string &name, CheckerFactory factory);
+/// `surfaceOnly` marks checkers whose own semantics are kept (for comparisons with other tools).
+void registerChecker(const std::string &name, CheckerFactory factory, bool surfaceOnly = false);
 }  // namespace hcd

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Solid objects: a closed (watertight) mesh component bounds a volume, and containment is contact.
+//
+// A surface checker answers "do the triangles touch?". When they do not, each connected component
+// of one mesh lies entirely inside or entirely outside each closed component of the other, so one
+// vertex per component decides the rest: the robot collides when a vertex of any robot component
+// lies inside a closed environment component, or (for a closed robot) a vertex of any environment
+// component lies inside a closed robot component. Point-in-solid is exact ray parity (SolidQuery),
+// which needs no consistent orientation (SketchUp files repeat faces reversed).
+#pragma once
+
+#include "hybridcd/geometry/solid_components.h"
+#include "hybridcd/query/collision_checker.h"
+
+#include <memory>
+
+namespace hcd
+{
+/// What counts as contact.
+enum class ContactSemantics
+{
+    Solid,        ///< closed components are solids (the default)
+    SurfaceOnly,  ///< meshes are surfaces only, as FCL treats them
+};
+
+/// Wraps a surface checker with solid semantics; open components stay surfaces.
+class SolidSemanticsChecker final : public CollisionChecker
+{
+public:
+    SolidSemanticsChecker(std::unique_ptr<CollisionChecker> surface, const CollisionScene &scene);
+
+    std::string name() const override { return surface_->name(); }
+    bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    /// 0 when the surfaces touch or one object is inside the other; otherwise the surface distance.
+    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
+    std::vector<HierarchyReport> hierarchies() const override { return surface_->hierarchies(); }
+
+    /// True when, the surfaces being disjoint, one object lies inside a solid of the other.
+    bool contained(const RigidTransform &worldFromRobot) const;
+
+    const SolidQuery &environmentSolids() const { return environmentSolids_; }
+    const SolidQuery &robotSolids() const { return robotSolids_; }
+
+private:
+    std::unique_ptr<CollisionChecker> surface_;
+    SolidQuery environmentSolids_;
+    SolidQuery robotSolids_;
+    std::vector<Vec3> robotRepresentatives_;        ///< one vertex per robot component (robot frame)
+    std::vector<Vec3> environmentRepresentatives_;  ///< one vertex per environment component (world)
+};
+}  // namespace hcd

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/query/solid_semantics_checker.h"
+
+namespace hcd
+{
+namespace
+{
+std::vector<Vec3> representatives(const SolidQuery &solids)
+{
+    std::vector<Vec3> out;
+    for (const MeshComponent &c : solids.components())
+        if (!c.triangles.empty())
+            out.push_back(solids.mesh().corner(c.triangles.front(), 0));
+    return out;
+}
+}  // namespace
+
+SolidSemanticsChecker::SolidSemanticsChecker(std::unique_ptr<CollisionChecker> surface, const CollisionScene &scene)
+    : surface_(std::move(surface)),
+      environmentSolids_(scene.environment),
+      robotSolids_(scene.robot),
+      robotRepresentatives_(representatives(robotSolids_)),
+      environmentRepresentatives_(representatives(environmentSolids_))
+{
+}
+
+bool SolidSemanticsChecker::contained(const RigidTransform &worldFromRobot) const
+{
+    if (environmentSolids_.closedComponentCount() > 0)
+        for (const Vec3 &v : robotRepresentatives_)
+            if (environmentSolids_.insideAnySolid(worldFromRobot.apply(v)))
+                return true;
+    if (robotSolids_.closedComponentCount() > 0)
+    {
+        const RigidTransform robotFromWorld = worldFromRobot.inverse();
+        for (const Vec3 &v : environmentRepresentatives_)
+            if (robotSolids_.insideAnySolid(robotFromWorld.apply(v)))
+                return true;
+    }
+    return false;
+}
+
+bool SolidSemanticsChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
+{
+    if (!worldFromRobot.isFinite())
+        return true;
+    return surface_->collides(worldFromRobot, stats) || contained(worldFromRobot);
+}
+
+double SolidSemanticsChecker::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
+{
+    if (!worldFromRobot.isFinite())
+        return 0.0;
+    const double d = surface_->distance(worldFromRobot, stats);
+    return d > 0.0 && contained(worldFromRobot) ? 0.0 : d;
+}
+
+bool SolidSemanticsChecker::withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
+{
+    if (!worldFromRobot.isFinite())
+        return true;
+    return surface_->withinDistance(worldFromRobot, delta, stats) || contained(worldFromRobot);
+}
+}  // namespace hcd
