@@ -3,6 +3,7 @@
 #include "command_line.h"
 #include "commands.h"
 
+#include "hybridcd/geometry/solid_components.h"
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/query/checker_registry.h"
 
@@ -22,6 +23,27 @@ std::string formatVec(const Vec3 &v)
     return s.str();
 }
 
+// "N (K closed, i.e. solids: #i (T triangles), ...)".
+std::string solidSummary(const TriangleMesh &mesh)
+{
+    const std::vector<MeshComponent> components = meshComponents(mesh);
+    std::ostringstream s;
+    std::size_t closed = 0;
+    std::string list;
+    for (std::size_t i = 0; i < components.size(); ++i)
+        if (components[i].closed)
+        {
+            ++closed;
+            if (closed <= 12)
+                list += (list.empty() ? "" : ", ") + std::string("#") + std::to_string(i) + " (" +
+                        std::to_string(components[i].triangles.size()) + " triangles)";
+        }
+    s << components.size() << " connected, " << closed << " closed (solids)";
+    if (closed > 0)
+        s << ": " << list << (closed > 12 ? ", ..." : "");
+    return s.str();
+}
+
 void describeMesh(const char *role, const std::string &file, const LoadedMesh &m)
 {
     std::cout << role << ": " << (file.empty() ? "(none)" : file) << '\n';
@@ -33,6 +55,7 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
               << ", non-triangle primitives skipped: " << m.skippedNonTriangles << ")\n"
               << "  vertices: " << m.mesh.vertices.size() << " (after welding identical ones)\n"
               << "  closed (watertight): " << (isClosed(m.mesh) ? "yes" : "no") << '\n'
+              << "  components: " << solidSummary(m.mesh) << '\n'
               << "  bounding box: min " << formatVec(box.min) << " max " << formatVec(box.max) << '\n'
               << "  centring shift subtracted: " << formatVec(m.centeringShift) << '\n'
               << "  mesh memory: " << m.mesh.memoryBytes() / 1024.0 << " KiB\n";
@@ -41,7 +64,7 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
 
 int runInspect(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"checker"}, {});
+    const CommandLine cl(args, {"checker"}, {"surface-only"});
     const LoadedProblem problem = loadProblem(cl.problem());
     const ProblemConfig &cfg = problem.config;
     std::cout << "problem: " << cfg.name << " (" << cfg.path << ")\n"
@@ -56,7 +79,7 @@ int runInspect(const std::vector<std::string> &args)
     while (std::getline(names, name, ','))
     {
         const auto start = std::chrono::steady_clock::now();
-        const auto checker = makeChecker(name, problem.scene);
+        const auto checker = makeChecker(name, problem.scene, semanticsOf(cl));
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::cout << "checker " << checker->name() << ": built in " << seconds * 1e3 << " ms\n";
         for (const HierarchyReport &h : checker->hierarchies())

@@ -2,6 +2,8 @@
 // A small command-line reader: one positional argument (the problem) and --key value options.
 #pragma once
 
+#include "hybridcd/query/solid_semantics_checker.h"
+
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -35,4 +37,10 @@ private:
     std::vector<std::string> positionals_;
     std::map<std::string, std::string> values_;
 };
+
+/// Solid semantics unless --surface-only was given.
+inline ContactSemantics semanticsOf(const CommandLine &cl)
+{
+    return cl.has("surface-only") ? ContactSemantics::SurfaceOnly : ContactSemantics::Solid;
+}
 }  // namespace hcd::cli

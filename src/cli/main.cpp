@@ -28,7 +28,9 @@ commands:
   bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
            [--time SECONDS] [--memory MB] [--shard I/N] [--out FILE.log] [--motion ...] [--seed N]
 
-Checkers: obb (default), bruteforce, fcl (when built with FCL). Planners: see 'hybridcd solve --planner help'.
+Checkers: obb (default), bruteforce, fcl (when built with FCL).
+Closed mesh components are solids (containment is contact); --surface-only treats meshes as
+surfaces only, as FCL does (fcl always does). Planners: see 'hybridcd solve --planner help'.
 )";
 }
 

@@ -581,8 +581,7 @@ Verdict referenceVerdict(const Ellipsoid &a, const Ellipsoid &b, test::TestRando
     if (separates(a, b, ab.normal) || separates(a, b, -ba.normal) || separates(a, b, gridContactNormal(a, b)))
         return Verdict::Disjoint;
     // Dense sampling of the smaller ellipsoid along rays from its centre.
-    const bool aSmaller = a.volume() < b.volume();
-    const Ellipsoid &small = aSmaller ? a : b, &large = aSmaller ? b : a;
+    const Ellipsoid &small = a.volume() < b.volume() ? a : b;
     for (int ray = 0; ray < 200; ++ray)
     {
         const Vec3 u = unitVector(rng);
@@ -590,7 +589,6 @@ Verdict referenceVerdict(const Ellipsoid &a, const Ellipsoid &b, test::TestRando
             if (witnessInBoth(a, b, small.center + small.axes * small.semiAxes.cwiseProduct(u) * (step / 16.0)))
                 return Verdict::Overlap;
     }
-    (void)large;
     if (searchSeparatingNormal(a, b, ab.normal))
         return Verdict::Disjoint;
     return Verdict::Unknown;

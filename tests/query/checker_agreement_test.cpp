@@ -155,3 +155,26 @@ TEST(CheckerAgreement, ThinWallsAndExtremeScales)
         }
     }
 }
+
+TEST(CheckerAgreement, RobotInsideClosedObstacleIsACollision)
+{
+    // A small robot fully inside a closed box obstacle collides (solid semantics) though no
+    // triangles touch; inside an open box (one face missing) it does not.
+    const TriangleMesh closedBox = test::boxMesh(Vec3(0, 0, 0), Vec3(10, 10, 10));
+    TriangleMesh openBox = closedBox;
+    openBox.triangles.resize(openBox.triangles.size() - 2);
+    const TriangleMesh robot = test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    test::TestRandom rng(1);
+    const RigidTransform inside{test::randomRotation(rng), Vec3(5, 5, 5)};
+    for (const std::string &name : checkerNames())
+    {
+        if (name == "fcl")
+            continue;  // FCL is registered surface-only
+        EXPECT_TRUE(makeChecker(name, sceneOf(robot, closedBox))->collides(inside)) << name;
+        EXPECT_FALSE(makeChecker(name, sceneOf(robot, closedBox), ContactSemantics::SurfaceOnly)->collides(inside)) << name;
+        EXPECT_FALSE(makeChecker(name, sceneOf(robot, openBox))->collides(inside)) << name;
+        // The other way round: a closed robot swallowing a small obstacle.
+        EXPECT_TRUE(makeChecker(name, sceneOf(closedBox, robot))->collides({Mat3::Identity(), Vec3(-5, -5, -5)})) << name;
+        EXPECT_EQ(makeChecker(name, sceneOf(robot, closedBox))->distance(inside), 0.0) << name;
+    }
+}
