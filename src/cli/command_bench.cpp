@@ -60,7 +60,7 @@ struct CheckerSlot
 
 int runBench(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"checker", "runs", "time", "memory", "shard", "out", "planner", "motion", "seed"},
+    const CommandLine cl(args, withCheckerOptions({"checker", "runs", "time", "memory", "shard", "out", "planner", "motion", "seed"}),
                           {"surface-only"});
     if (cl.has("seed"))
         ompl::RNG::setSeed(std::uint_fast32_t(cl.integer("seed", 0)));
@@ -89,7 +89,7 @@ int runBench(const std::vector<std::string> &args)
 
     std::vector<CheckerSlot> slots;
     for (const std::string &name : splitList(cl.text("checker", "obb")))
-        slots.push_back({name, makeChecker(name, problem.scene, semanticsOf(cl)), nullptr});
+        slots.push_back({name, makeChecker(name, problem.scene, checkerOptionsOf(cl)), nullptr});
     if (slots.empty())
         throw UsageError("--checker needs at least one checker name");
 

@@ -14,12 +14,12 @@ namespace hcd::cli
 {
 int runCheck(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"states", "checker"}, {"surface-only"});
+    const CommandLine cl(args, withCheckerOptions({"states", "checker"}), {"surface-only"});
     if (!cl.has("states"))
         throw UsageError("check needs --states FILE");
     const LoadedProblem problem = loadProblem(cl.problem());
     const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, semanticsOf(cl));
+    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl));
 
     std::string out;
     out.reserve(poses.size() * 2);

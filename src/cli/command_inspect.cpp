@@ -64,7 +64,7 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
 
 int runInspect(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"checker"}, {"surface-only"});
+    const CommandLine cl(args, withCheckerOptions({"checker"}), {"surface-only"});
     const LoadedProblem problem = loadProblem(cl.problem());
     const ProblemConfig &cfg = problem.config;
     std::cout << "problem: " << cfg.name << " (" << cfg.path << ")\n"
@@ -79,7 +79,7 @@ int runInspect(const std::vector<std::string> &args)
     while (std::getline(names, name, ','))
     {
         const auto start = std::chrono::steady_clock::now();
-        const auto checker = makeChecker(name, problem.scene, semanticsOf(cl));
+        const auto checker = makeChecker(name, problem.scene, checkerOptionsOf(cl));
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::cout << "checker " << checker->name() << ": built in " << seconds * 1e3 << " ms\n";
         for (const HierarchyReport &h : checker->hierarchies())

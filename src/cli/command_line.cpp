@@ -95,4 +95,22 @@ const std::string &CommandLine::problem() const
                                                     " positional arguments");
     return positionals_.front();
 }
+
+CheckerOptions checkerOptionsOf(const CommandLine &cl)
+{
+    CheckerOptions options;
+    options.semantics = cl.has("surface-only") ? ContactSemantics::SurfaceOnly : ContactSemantics::Solid;
+    const std::string mode = cl.text("mode", "exact");
+    if (mode == "approximate")
+    {
+        options.approximateTolerance = cl.number("tolerance", 0.0);
+        if (options.approximateTolerance < 0.0)
+            throw UsageError("--tolerance needs a non-negative distance");
+    }
+    else if (mode != "exact")
+        throw UsageError("--mode expects exact or approximate, got '" + mode + "'");
+    else if (cl.has("tolerance"))
+        throw UsageError("--tolerance applies to --mode approximate");
+    return options;
+}
 }  // namespace hcd::cli

@@ -2,7 +2,7 @@
 // A small command-line reader: one positional argument (the problem) and --key value options.
 #pragma once
 
-#include "hybridcd/query/solid_semantics_checker.h"
+#include "hybridcd/query/checker_registry.h"
 
 #include <map>
 #include <set>
@@ -38,9 +38,14 @@ private:
     std::map<std::string, std::string> values_;
 };
 
-/// Solid semantics unless --surface-only was given.
-inline ContactSemantics semanticsOf(const CommandLine &cl)
+/// Options every checker-building command shares: --surface-only, --mode exact|approximate and
+/// --tolerance T (the LP checker's approximate mode).
+CheckerOptions checkerOptionsOf(const CommandLine &cl);
+
+/// The option names checkerOptionsOf reads, to add to a command's accepted options.
+inline std::set<std::string> withCheckerOptions(std::set<std::string> valued) 
 {
-    return cl.has("surface-only") ? ContactSemantics::SurfaceOnly : ContactSemantics::Solid;
+    valued.insert({"mode", "tolerance"});
+    return valued;
 }
 }  // namespace hcd::cli

@@ -47,17 +47,17 @@ void recordToState(const PoseRecord &r, bool planar, ompl::base::State *state)
 
 int runCheckMotion(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"motions", "checker", "tolerance"}, {"surface-only"});
+    const CommandLine cl(args, withCheckerOptions({"motions", "checker", "contact-tolerance"}), {"surface-only"});
     if (!cl.has("motions"))
         throw UsageError("check-motion needs --motions FILE");
     const LoadedProblem problem = loadProblem(cl.problem());
     const auto motions = readMotions(cl.text("motions", ""), problem.config.planar);
     PlanningProblem planning =
-        makePlanningProblem(problem, makeChecker(cl.text("checker", "obb"), problem.scene, semanticsOf(cl)),
+        makePlanningProblem(problem, makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl)),
                             MotionCheck::Continuous);
     const auto si = planning.setup->getSpaceInformation();
     auto validator = std::dynamic_pointer_cast<ContinuousMotionValidator>(si->getMotionValidator());
-    validator->setContactTolerance(cl.number("tolerance", 1e-6));
+    validator->setContactTolerance(cl.number("contact-tolerance", 1e-6));
     validator->setApplyBounds(false);  // as in `check`, only collisions decide
 
     ompl::base::State *a = si->allocState(), *b = si->allocState(), *last = si->allocState();
@@ -91,12 +91,12 @@ int runCheckMotion(const std::vector<std::string> &args)
 
 int runClearance(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"states", "checker"}, {"surface-only"});
+    const CommandLine cl(args, withCheckerOptions({"states", "checker"}), {"surface-only"});
     if (!cl.has("states"))
         throw UsageError("clearance needs --states FILE");
     const LoadedProblem problem = loadProblem(cl.problem());
     const auto poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, semanticsOf(cl));
+    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl));
     std::ostringstream out;
     out << std::setprecision(std::numeric_limits<double>::max_digits10);
     for (const PoseRecord &p : poses)

@@ -43,7 +43,7 @@ std::vector<std::pair<std::string, std::string>> parseParams(const std::string &
 
 int runSolve(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, {"planner", "time", "seed", "checker", "out", "param", "motion"}, {"verbose", "surface-only"});
+    const CommandLine cl(args, withCheckerOptions({"planner", "time", "seed", "checker", "out", "param", "motion"}), {"verbose", "surface-only"});
     if (cl.text("planner", "") == "help")
     {
         for (const std::string &n : plannerNames())
@@ -62,7 +62,7 @@ int runSolve(const std::vector<std::string> &args)
     const LoadedProblem problem = loadProblem(cl.problem());
     const std::string checkerName = cl.text("checker", "obb");
     const auto buildStart = std::chrono::steady_clock::now();
-    std::shared_ptr<const CollisionChecker> checker = makeChecker(checkerName, problem.scene, semanticsOf(cl));
+    std::shared_ptr<const CollisionChecker> checker = makeChecker(checkerName, problem.scene, checkerOptionsOf(cl));
     const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
 
     PlanningProblem planning = makePlanningProblem(problem, checker, parseMotionCheck(cl.text("motion", "continuous")));

@@ -21,14 +21,15 @@ commands:
            [--out PATH_FILE] [--param KEY=VALUE,...] [--motion continuous|discrete]
            [--verbose]
   check    classify poses: --states FILE [--checker NAME]   (prints 1 free / 0 colliding per pose)
-  check-motion  continuous motion checks: --motions FILE [--checker NAME] [--tolerance FRACTION]
+  check-motion  continuous motion checks: --motions FILE [--checker NAME] [--contact-tolerance FRACTION]
            (two poses per line; prints 1 free, or 0 T with T the last free fraction before contact)
   clearance  distance to the environment per pose: --states FILE [--checker NAME]
   inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
   bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
            [--time SECONDS] [--memory MB] [--shard I/N] [--out FILE.log] [--motion ...] [--seed N]
 
-Checkers: obb (default), bruteforce, fcl (when built with FCL).
+Checkers: obb (default), lp (convex pieces tested by linear programming; --mode exact|approximate
+--tolerance T), bruteforce, fcl (when built with FCL).
 Closed mesh components are solids (containment is contact); --surface-only treats meshes as
 surfaces only, as FCL does (fcl always does). Planners: see 'hybridcd solve --planner help'.
 )";

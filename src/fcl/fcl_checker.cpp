@@ -100,6 +100,7 @@ std::vector<HierarchyReport> FclChecker::hierarchies() const
 
 void registerFclChecker()
 {
-    registerChecker("fcl", [](const CollisionScene &s) { return std::make_unique<FclChecker>(s); }, true);
+    registerChecker(
+        "fcl", [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<FclChecker>(s); }, true);
 }
 }  // namespace hcd

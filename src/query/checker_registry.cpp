@@ -28,8 +28,17 @@ struct Registry
 Registry &registry()
 {
     static Registry r{{},
-                      {{"obb", [](const CollisionScene &s) { return std::make_unique<ObbTreeChecker>(s, "obb"); }, false},
-                       {"bruteforce", [](const CollisionScene &s) { return std::make_unique<BruteForceChecker>(s); },
+                      {{"obb", [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<ObbTreeChecker>(s, "obb"); },
+                        false},
+                       {"bruteforce",
+                        [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<BruteForceChecker>(s); },
+                        false},
+                       {"lp",
+                        [](const CollisionScene &s, const CheckerOptions &o) {
+                            PieceStage stage;
+                            stage.approximateTolerance = o.approximateTolerance;
+                            return std::make_unique<ObbTreeChecker>(s, "lp", 1, stage);
+                        },
                         false}}};
     return r;
 }
@@ -46,7 +55,7 @@ std::vector<std::string> checkerNames()
 }
 
 std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const CollisionScene &scene,
-                                              ContactSemantics semantics)
+                                              const CheckerOptions &options)
 {
     CheckerFactory factory;
     bool surfaceOnly = false;
@@ -67,9 +76,9 @@ std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const Col
             list += (list.empty() ? "" : ", ") + n;
         throw std::invalid_argument("unknown checker '" + name + "'; valid checkers: " + list);
     }
-    if (semantics == ContactSemantics::SurfaceOnly || surfaceOnly)
-        return factory(scene);
-    return std::make_unique<SolidSemanticsChecker>(factory(scene), scene);
+    if (options.semantics == ContactSemantics::SurfaceOnly || surfaceOnly)
+        return factory(scene, options);
+    return std::make_unique<SolidSemanticsChecker>(factory(scene, options), scene);
 }
 
 void registerChecker(const std::string &name, CheckerFactory factory, bool surfaceOnly)

@@ -2,6 +2,7 @@
 #include "hybridcd/query/volume_tree_checker.h"
 
 #include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/narrowphase/linear_program.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/query/placed_robot.h"
 #include "hybridcd/query/traversal_stack.h"
@@ -11,15 +12,64 @@
 
 namespace hcd
 {
+namespace
+{
+// Robot pieces mapped to world for the current query, computed on first use. Per-thread storage
+// reused across queries; stamps mark what this query has computed (as in PlacedRobot).
+class PlacedPieces
+{
+public:
+    explicit PlacedPieces(const RigidTransform &pose) : s_(scratch()), query_(++s_.query), pose_(pose) {}
+
+    const ConvexPiece &piece(std::uint32_t node, const ConvexPiece &local)
+    {
+        if (s_.pieces.size() <= node)
+        {
+            s_.pieces.resize(node + 1);
+            s_.stamps.resize(node + 1, 0);
+        }
+        if (s_.stamps[node] != query_)
+        {
+            s_.pieces[node] = local.transformed(pose_);
+            s_.stamps[node] = query_;
+        }
+        return s_.pieces[node];
+    }
+
+private:
+    struct Scratch
+    {
+        std::vector<ConvexPiece> pieces;
+        std::vector<std::uint64_t> stamps;
+        std::uint64_t query = 0;
+    };
+    static Scratch &scratch()
+    {
+        thread_local Scratch s;
+        return s;
+    }
+    Scratch &s_;
+    std::uint64_t query_;
+    RigidTransform pose_;
+};
+}  // namespace
+
 template <class Volume>
-VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles)
+VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles,
+                                             std::optional<PieceStage> pieces)
     : scene_(std::move(scene)),
       name_(std::move(name)),
-      robotTree_(scene_.robot, maxLeafTriangles),
-      environmentTree_(scene_.environment, maxLeafTriangles),
+      robotTree_(scene_.robot, pieces ? pieces->leafTriangles : maxLeafTriangles),
+      environmentTree_(scene_.environment, pieces ? pieces->leafTriangles : maxLeafTriangles),
       robotRadius_(scene_.robot->radiusAboutOrigin()),
-      environmentMagnitude_(scene_.environment->radiusAboutOrigin())
+      environmentMagnitude_(scene_.environment->radiusAboutOrigin()),
+      pieceStage_(pieces)
 {
+    if (pieceStage_)
+    {
+        robotPieces_ = decomposeLeaves(robotTree_);
+        environmentPieces_ = decomposeLeaves(environmentTree_);
+    }
     const TriangleMesh &env = *scene_.environment;
     environmentTriangleBounds_.reserve(env.triangleCount());
     for (std::size_t t = 0; t < env.triangleCount(); ++t)
@@ -64,8 +114,9 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
     PlacedRobot<Volume> placed(robotTree_, worldFromRobot);
+    PlacedPieces placedPieces(worldFromRobot);
 
-    std::uint64_t boxTests = 0, triangleTests = 0;
+    std::uint64_t boxTests = 0, triangleTests = 0, pieceTests = 0;
     bool hit = false;
     TraversalStack stack;
     stack.push({0, 0});
@@ -85,6 +136,22 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
+            if (pieceStage_ && delta == 0.0)
+            {
+                const std::int32_t rp = robotPieces_.pieceOfNode[pair.robot];
+                const std::int32_t ep = environmentPieces_.pieceOfNode[pair.environment];
+                const IntersectionResult lp =
+                    intersectConvexPieces(placedPieces.piece(pair.robot, robotPieces_.pieces[rp]), environmentPieces_.pieces[ep]);
+                ++pieceTests;
+                if (!lp.intersecting)
+                    continue;
+                const double t = pieceStage_->approximateTolerance;
+                if (t >= 0.0 && robotPieces_.concavity[rp] <= t && environmentPieces_.concavity[ep] <= t)
+                {
+                    hit = true;
+                    continue;
+                }
+            }
             for (std::uint32_t i = 0; i < rn.triangleCount && !hit; ++i)
             {
                 const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
@@ -125,7 +192,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
     if (stats)
     {
         stats->boundingVolumeTests += boxTests;
-        stats->primitiveTests += triangleTests;
+        stats->primitiveTests += triangleTests + pieceTests;
     }
     return hit;
 }
@@ -204,11 +271,21 @@ template <class Volume>
 std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies() const
 {
     const std::string kind = VolumeTraits<Volume>::kName;
-    return {{"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
+    std::vector<HierarchyReport> reports = {{"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
              robotTree_.memoryBytes()},
             {"environment " + kind + " tree", environmentTree_.nodes().size(), environmentTree_.depth(),
              environmentTree_.buildSeconds(), environmentTree_.memoryBytes() +
                                                   environmentTriangleBounds_.capacity() * sizeof(TriangleBounds)}};
+    if (pieceStage_)
+        for (const auto &[label, d] : {std::pair<const char *, const ConvexDecomposition *>{"robot convex pieces", &robotPieces_},
+                                      {"environment convex pieces", &environmentPieces_}})
+        {
+            std::size_t bytes = 0;
+            for (const ConvexPiece &p : d->pieces)
+                bytes += p.normals.size() * (sizeof(Vec3) + sizeof(double)) + p.vertices.size() * sizeof(Vec3);
+            reports.push_back({label, d->pieces.size(), 0, d->seconds, bytes});
+        }
+    return reports;
 }
 
 template class VolumeTreeChecker<Obb>;

@@ -3,7 +3,10 @@
 #pragma once
 
 #include "hybridcd/bvh/volume_tree.h"
+#include "hybridcd/narrowphase/convex_decomposition.h"
 #include "hybridcd/query/collision_checker.h"
+
+#include <optional>
 
 namespace hcd
 {
@@ -12,11 +15,23 @@ namespace hcd
 /// with the spheres first, then the volumes (VolumeTraits<Volume>::overlap, conservative); at the
 /// leaves an exact axis-aligned reject, then the exact triangle test. So the answer equals
 /// BruteForceChecker's whatever the volume. Instantiated for every volume in volume_traits.h.
+/// The LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is
+/// tested by linear programming before any triangle. Exact mode (tolerance < 0): an LP "disjoint"
+/// rejects the leaf pair, an LP "intersecting" is confirmed by the exact triangle tests.
+/// Approximate mode (tolerance T >= 0): pieces whose concavity is at most T decide alone, so
+/// contact may be reported up to T early but never missed.
+struct PieceStage
+{
+    unsigned leafTriangles = 8;
+    double approximateTolerance = -1.0;
+};
+
 template <class Volume>
 class VolumeTreeChecker final : public CollisionChecker
 {
 public:
-    VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles = 1);
+    VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles = 1,
+                      std::optional<PieceStage> pieces = std::nullopt);
     std::string name() const override { return name_; }
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
@@ -25,6 +40,9 @@ public:
 
     const VolumeTree<Volume> &robotTree() const { return robotTree_; }
     const VolumeTree<Volume> &environmentTree() const { return environmentTree_; }
+    /// The convex pieces of the LP stage (empty without it).
+    const ConvexDecomposition &robotPieces() const { return robotPieces_; }
+    const ConvexDecomposition &environmentPieces() const { return environmentPieces_; }
 
 private:
     /// Collision (delta = 0, exact triangle test) or proximity (delta > 0) with early exit.
@@ -43,6 +61,8 @@ private:
     double robotRadius_ = 0.0;
     double environmentMagnitude_ = 0.0;
     std::vector<TriangleBounds> environmentTriangleBounds_;  ///< per mesh triangle, for a cheap exact reject
+    std::optional<PieceStage> pieceStage_;
+    ConvexDecomposition robotPieces_, environmentPieces_;
 };
 
 using ObbTreeChecker = VolumeTreeChecker<Obb>;

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Cutting a mesh into convex pieces for the LP narrow phase.
+//
+// The pieces are the leaves of a volume tree built with at most K triangles per leaf: the top-down
+// split already groups nearby triangles along the longest direction, so each leaf's triangles form
+// a compact cluster, and its convex hull (Qhull) is the piece. Every triangle lies in the piece of
+// its leaf by construction. Each piece records its concavity: how far its hull surface stands out
+// from the triangles it covers (0 when the triangles are the hull, e.g. a single triangle or a
+// convex closed cluster), measured on points spread over every hull facet.
+#pragma once
+
+#include "hybridcd/bvh/volume_tree.h"
+#include "hybridcd/narrowphase/convex_piece.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace hcd
+{
+struct ConvexDecomposition
+{
+    std::vector<ConvexPiece> pieces;   ///< one per leaf, in the mesh's own frame
+    std::vector<double> concavity;     ///< per piece, in mesh units
+    std::vector<std::int32_t> pieceOfNode;  ///< tree node -> piece index, -1 for internal nodes
+    double seconds = 0.0;              ///< time to build the hulls and measure concavity
+};
+
+/// Hull of every leaf of `tree` and its concavity.
+template <class Volume>
+ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree);
+
+/// Largest distance from points on the hull's facets (their corners, centroids and a grid of
+/// `samplesPerEdge` x `samplesPerEdge` barycentric points) to the nearest of `triangles` of `mesh`.
+double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles,
+                        int samplesPerEdge = 4);
+}  // namespace hcd

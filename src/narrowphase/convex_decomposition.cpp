@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/narrowphase/convex_decomposition.h"
+
+#include "hybridcd/geometry/triangle_distance.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace hcd
+{
+namespace
+{
+double distanceToTriangles(const Vec3 &p, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles)
+{
+    double best = std::numeric_limits<double>::infinity();
+    for (std::uint32_t t : triangles)
+        best = std::min(best, (p - closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2))).norm());
+    return best;
+}
+}  // namespace
+
+double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles,
+                        int samplesPerEdge)
+{
+    // Facets of the hull: the vertices lying on each supporting plane, fanned from their centroid.
+    double worst = 0.0;
+    for (std::size_t f = 0; f < hull.normals.size(); ++f)
+    {
+        std::vector<Vec3> facet;
+        const double tolerance = 1e-9 * (1.0 + hull.magnitude());
+        for (const Vec3 &v : hull.vertices)
+            if (std::fabs(hull.normals[f].dot(v) - hull.offsets[f]) <= tolerance)
+                facet.push_back(v);
+        if (facet.size() < 3)
+            continue;
+        Vec3 centre = Vec3::Zero();
+        for (const Vec3 &v : facet)
+            centre += v / double(facet.size());
+        // Order the facet's vertices around its centre so consecutive pairs are its edges.
+        const Vec3 n = hull.normals[f];
+        const Vec3 u = (facet[0] - centre).normalized(), w = n.cross(u);
+        std::sort(facet.begin(), facet.end(), [&](const Vec3 &a, const Vec3 &b) {
+            return std::atan2((a - centre).dot(w), (a - centre).dot(u)) < std::atan2((b - centre).dot(w), (b - centre).dot(u));
+        });
+        for (std::size_t i = 0; i < facet.size(); ++i)
+        {
+            const Vec3 &a = facet[i], &b = facet[(i + 1) % facet.size()];
+            for (int s = 0; s <= samplesPerEdge; ++s)
+                for (int t = 0; s + t <= samplesPerEdge; ++t)
+                {
+                    const double bs = double(s) / samplesPerEdge, bt = double(t) / samplesPerEdge;
+                    const Vec3 p = centre + bs * (a - centre) + bt * (b - centre);
+                    worst = std::max(worst, distanceToTriangles(p, mesh, triangles));
+                }
+        }
+    }
+    return worst;
+}
+
+template <class Volume>
+ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree)
+{
+    const auto start = std::chrono::steady_clock::now();
+    ConvexDecomposition d;
+    d.pieceOfNode.assign(tree.nodes().size(), -1);
+    std::vector<Vec3> points;
+    std::vector<std::uint32_t> triangles;
+    for (std::size_t i = 0; i < tree.nodes().size(); ++i)
+    {
+        const auto &node = tree.nodes()[i];
+        if (!node.isLeaf())
+            continue;
+        points.clear();
+        triangles.clear();
+        for (std::uint32_t k = 0; k < node.triangleCount; ++k)
+        {
+            const std::uint32_t t = tree.triangleOrder()[node.firstTriangle + k];
+            triangles.push_back(t);
+            for (int c = 0; c < 3; ++c)
+                points.push_back(tree.mesh().corner(t, c));
+        }
+        d.pieceOfNode[i] = std::int32_t(d.pieces.size());
+        d.pieces.push_back(ConvexPiece::hullOf(points));
+        d.concavity.push_back(measureConcavity(d.pieces.back(), tree.mesh(), triangles));
+    }
+    d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return d;
+}
+
+template ConvexDecomposition decomposeLeaves<Obb>(const VolumeTree<Obb> &);
+}  // namespace hcd
