@@ -76,11 +76,11 @@ ContactValue contactFunction(const Mat3 &la, const Mat3 &lb, const Vec3 &d, doub
 
 /// True when the plane with normal `n` provably separates a from b (d = cb - ca): n.d exceeds the sum of
 /// the support radii by the relative margin plus a term covering the rounding of n.d.
-bool separatedAlong(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &d, const Vec3 &n)
+bool separatedAlong(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &d, const Vec3 &n, double slack)
 {
     const double gap = n.dot(d);
     const double reach = a.supportRadius(n) + b.supportRadius(n);
-    return gap > reach * (1.0 + kContactMargin) + 1e-14 * n.norm() * d.norm();
+    return gap > reach * (1.0 + kContactMargin) + 1e-14 * n.norm() * d.norm() + slack * n.norm();
 }
 
 struct ContactSearch
@@ -93,7 +93,7 @@ struct ContactSearch
 /// Maximises the concave F over [0, 1] by Newton's method safeguarded by bisection on the sign of F'.
 /// With `decide` it stops as soon as the answer is known: at a certified separation, or when the tangent
 /// at the current point bounds F below 1 on the remaining bracket (concavity), so the pair overlaps.
-ContactSearch maximiseContact(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &d, bool decide)
+ContactSearch maximiseContact(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &d, bool decide, double slack = 0.0)
 {
     ContactSearch search;
     const Mat3 la = a.axes * a.semiAxes.asDiagonal();
@@ -120,7 +120,7 @@ ContactSearch maximiseContact(const Ellipsoid &a, const Ellipsoid &b, const Vec3
             search.bestValue = value.f;
             search.bestNormal = value.normal;
         }
-        if (value.f > 1.0 + kContactMargin && separatedAlong(a, b, d, value.normal))
+        if (value.f > 1.0 + kContactMargin && separatedAlong(a, b, d, value.normal, slack))
         {
             search.separated = true;
             search.bestValue = value.f;
@@ -218,7 +218,7 @@ bool comesFirst(const Ellipsoid &a, const Ellipsoid &b)
 }
 }  // namespace
 
-bool ellipsoidsOverlap(const Ellipsoid &first, const Ellipsoid &second)
+bool ellipsoidsOverlap(const Ellipsoid &first, const Ellipsoid &second, double slack)
 {
     const bool inOrder = comesFirst(first, second);
     const Ellipsoid &a = inOrder ? first : second;
@@ -226,11 +226,11 @@ bool ellipsoidsOverlap(const Ellipsoid &first, const Ellipsoid &second)
     const Vec3 d = b.center - a.center;
     const double distance = d.norm();
     // Each ellipsoid lies in the ball of its largest semi-axis about its centre.
-    if (distance > (a.boundingRadius() + b.boundingRadius()) * (1.0 + kContactMargin) + 1e-14 * distance)
+    if (distance > (a.boundingRadius() + b.boundingRadius()) * (1.0 + kContactMargin) + 1e-14 * distance + slack)
         return false;
     if (a.contains(b.center) || b.contains(a.center))
         return true;
-    return !maximiseContact(a, b, d, true).separated;
+    return !maximiseContact(a, b, d, true, slack).separated;
 }
 
 double ellipsoidDistance(const Ellipsoid &a, const Ellipsoid &b)

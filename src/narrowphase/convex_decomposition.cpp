@@ -89,4 +89,7 @@ ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree)
 }
 
 template ConvexDecomposition decomposeLeaves<Obb>(const VolumeTree<Obb> &);
+template ConvexDecomposition decomposeLeaves<Ellipsoid>(const VolumeTree<Ellipsoid> &);
+template ConvexDecomposition decomposeLeaves<HybridVolume<false>>(const VolumeTree<HybridVolume<false>> &);
+template ConvexDecomposition decomposeLeaves<HybridVolume<true>>(const VolumeTree<HybridVolume<true>> &);
 }  // namespace hcd

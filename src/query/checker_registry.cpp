@@ -30,6 +30,21 @@ Registry &registry()
     static Registry r{{},
                       {{"obb", [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<ObbTreeChecker>(s, "obb"); },
                         false},
+                       {"ellipsoid",
+                        [](const CollisionScene &s, const CheckerOptions &) {
+                            return std::make_unique<VolumeTreeChecker<Ellipsoid>>(s, "ellipsoid");
+                        },
+                        false},
+                       {"hybrid",
+                        [](const CollisionScene &s, const CheckerOptions &) {
+                            return std::make_unique<VolumeTreeChecker<HybridVolume<false>>>(s, "hybrid");
+                        },
+                        false},
+                       {"hybrid-ellipsoid-first",
+                        [](const CollisionScene &s, const CheckerOptions &) {
+                            return std::make_unique<VolumeTreeChecker<HybridVolume<true>>>(s, "hybrid-ellipsoid-first");
+                        },
+                        false},
                        {"bruteforce",
                         [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<BruteForceChecker>(s); },
                         false},

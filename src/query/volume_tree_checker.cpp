@@ -289,4 +289,7 @@ std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies() const
 }
 
 template class VolumeTreeChecker<Obb>;
+template class VolumeTreeChecker<Ellipsoid>;
+template class VolumeTreeChecker<HybridVolume<false>>;
+template class VolumeTreeChecker<HybridVolume<true>>;
 }  // namespace hcd

@@ -61,8 +61,9 @@ struct Ellipsoid
 /// ellipsoids through their support functions with a 1e-9 relative margin. Rounding can therefore only
 /// turn "disjoint" into "overlap", for pairs that scaling both about their centres by 1 + 1e-9 would
 /// make touch. Stable for thin ellipsoids (semi-axis ratios down to 1e-9), and symmetric: (a, b) and
-/// (b, a) always get the same answer. A few microseconds per call.
-bool ellipsoidsOverlap(const Ellipsoid &a, const Ellipsoid &b);
+/// (b, a) always get the same answer. A few microseconds per call. `slack` (>= 0, absolute) widens
+/// what counts as overlap to every pair closer than it, for rounding elsewhere or proximity queries.
+bool ellipsoidsOverlap(const Ellipsoid &a, const Ellipsoid &b, double slack = 0.0);
 
 /// A lower bound on the Euclidean distance between two ellipsoids in one frame (0 when
 /// ellipsoidsOverlap says they overlap). It is the gap along the best separating direction found
