@@ -4,10 +4,12 @@
 #include "commands.h"
 
 #include "hybridcd/geometry/solid_components.h"
+#include "hybridcd/io/input_error.h"
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/query/checker_registry.h"
 
 #include <chrono>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -64,7 +66,7 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
 
 int runInspect(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"checker"}), {"surface-only"});
+    const CommandLine cl(args, withCheckerOptions({"checker", "level", "export"}), {"surface-only"});
     const LoadedProblem problem = loadProblem(cl.problem());
     const ProblemConfig &cfg = problem.config;
     std::cout << "problem: " << cfg.name << " (" << cfg.path << ")\n"
@@ -82,9 +84,28 @@ int runInspect(const std::vector<std::string> &args)
         const auto checker = makeChecker(name, problem.scene, checkerOptionsOf(cl));
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::cout << "checker " << checker->name() << ": built in " << seconds * 1e3 << " ms\n";
-        for (const HierarchyReport &h : checker->hierarchies())
+        for (const HierarchyReport &h : checker->hierarchies(true))
+        {
             std::cout << "  " << h.label << ": " << h.nodes << " nodes, depth " << h.depth << ", build "
-                      << h.buildSeconds * 1e3 << " ms, memory " << h.memoryBytes / 1024.0 << " KiB\n";
+                      << h.buildSeconds * 1e3 << " ms, memory " << h.memoryBytes / 1024.0 << " KiB";
+            if (h.ratioNodes > 0)
+                std::cout << ", mean volume ratio node/content " << h.meanVolumeRatio << " (over " << h.ratioNodes
+                          << " non-flat nodes)";
+            std::cout << '\n';
+        }
+        if (cl.has("export"))
+        {
+            const std::string path = cl.text("export", "");
+            std::ofstream obj(path);
+            if (!obj)
+                throw InputError(path, 0, "cannot write the export file");
+            const long long level = cl.integer("level", 0);
+            if (level < 0)
+                throw UsageError("--level needs a non-negative tree level");
+            if (!checker->exportLevel(int(level), obj))
+                throw UsageError("checker '" + name + "' has no hierarchy to export");
+            std::cout << "  level " << level << " volumes written to " << path << '\n';
+        }
     }
     return kSuccess;
 }

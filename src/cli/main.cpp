@@ -25,6 +25,7 @@ commands:
            (two poses per line; prints 1 free, or 0 T with T the last free fraction before contact)
   clearance  distance to the environment per pose: --states FILE [--checker NAME]
   inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
+           [--level K --export FILE.obj]  (write the volumes of tree level K as a mesh)
   bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
            [--time SECONDS] [--memory MB] [--shard I/N] [--out FILE.log] [--motion ...] [--seed N]
 

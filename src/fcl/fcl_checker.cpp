@@ -86,7 +86,7 @@ double FclChecker::distance(const RigidTransform &worldFromRobot, QueryStats *) 
     return std::max(0.0, result.min_distance);
 }
 
-std::vector<HierarchyReport> FclChecker::hierarchies() const
+std::vector<HierarchyReport> FclChecker::hierarchies(bool) const
 {
     const auto report = [](const char *label, const Model &m, double seconds) {
         return HierarchyReport{label, std::size_t(m.getNumBVs()), 0, seconds,

@@ -20,15 +20,14 @@ double distanceToTriangles(const Vec3 &p, const TriangleMesh &mesh, const std::v
 }
 }  // namespace
 
-double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles,
-                        int samplesPerEdge)
+std::vector<std::vector<Vec3>> facetPolygons(const ConvexPiece &hull)
 {
-    // Facets of the hull: the vertices lying on each supporting plane, fanned from their centroid.
-    double worst = 0.0;
+    // The vertices lying on each supporting plane, ordered around their centroid.
+    std::vector<std::vector<Vec3>> facets;
+    const double tolerance = 1e-9 * (1.0 + hull.magnitude());
     for (std::size_t f = 0; f < hull.normals.size(); ++f)
     {
         std::vector<Vec3> facet;
-        const double tolerance = 1e-9 * (1.0 + hull.magnitude());
         for (const Vec3 &v : hull.vertices)
             if (std::fabs(hull.normals[f].dot(v) - hull.offsets[f]) <= tolerance)
                 facet.push_back(v);
@@ -37,12 +36,37 @@ double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const
         Vec3 centre = Vec3::Zero();
         for (const Vec3 &v : facet)
             centre += v / double(facet.size());
-        // Order the facet's vertices around its centre so consecutive pairs are its edges.
         const Vec3 n = hull.normals[f];
         const Vec3 u = (facet[0] - centre).normalized(), w = n.cross(u);
         std::sort(facet.begin(), facet.end(), [&](const Vec3 &a, const Vec3 &b) {
             return std::atan2((a - centre).dot(w), (a - centre).dot(u)) < std::atan2((b - centre).dot(w), (b - centre).dot(u));
         });
+        facets.push_back(std::move(facet));
+    }
+    return facets;
+}
+
+double hullVolume(const ConvexPiece &hull)
+{
+    if (hull.dimension < 3)
+        return 0.0;
+    // Sum of the pyramids from the centroid over every facet fan.
+    double volume = 0.0;
+    for (const std::vector<Vec3> &facet : facetPolygons(hull))
+        for (std::size_t i = 1; i + 1 < facet.size(); ++i)
+            volume += std::fabs((facet[0] - hull.centroid).dot((facet[i] - hull.centroid).cross(facet[i + 1] - hull.centroid))) / 6.0;
+    return volume;
+}
+
+double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles,
+                        int samplesPerEdge)
+{
+    double worst = 0.0;
+    for (const std::vector<Vec3> &facet : facetPolygons(hull))
+    {
+        Vec3 centre = Vec3::Zero();
+        for (const Vec3 &v : facet)
+            centre += v / double(facet.size());
         for (std::size_t i = 0; i < facet.size(); ++i)
         {
             const Vec3 &a = facet[i], &b = facet[(i + 1) % facet.size()];

@@ -8,6 +8,7 @@
 #include "hybridcd/query/traversal_stack.h"
 
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 
 namespace hcd
@@ -267,8 +268,77 @@ double VolumeTreeChecker<Volume>::distance(const RigidTransform &worldFromRobot,
     return best;
 }
 
+namespace
+{
+// Mean node volume over content hull volume, on up to 400 evenly spread nodes whose content is not flat.
 template <class Volume>
-std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies() const
+std::pair<double, std::size_t> meanVolumeRatio(const VolumeTree<Volume> &tree)
+{
+    const auto &nodes = tree.nodes();
+    const std::size_t step = std::max<std::size_t>(1, nodes.size() / 400);
+    double sum = 0.0;
+    std::size_t count = 0;
+    std::vector<Vec3> points;
+    for (std::size_t i = 0; i < nodes.size(); i += step)
+    {
+        points.clear();
+        for (std::uint32_t k = 0; k < nodes[i].triangleCount; ++k)
+            for (int c = 0; c < 3; ++c)
+                points.push_back(tree.mesh().corner(tree.triangleOrder()[nodes[i].firstTriangle + k], c));
+        const ConvexPiece hull = ConvexPiece::hullOf(points);
+        const double content = hullVolume(hull);
+        const double extent = hull.magnitude();
+        if (!(content > 1e-9 * extent * extent * extent))
+            continue;  // flat content (a single triangle, a planar patch): the ratio is unbounded
+        sum += VolumeTraits<Volume>::volume(nodes[i].volume) / content;
+        ++count;
+    }
+    return {count ? sum / double(count) : std::numeric_limits<double>::quiet_NaN(), count};
+}
+
+template <class Volume>
+void writeLevel(const VolumeTree<Volume> &tree, int level, const char *group, std::ostream &obj, std::size_t &vertexBase)
+{
+    ExportMesh mesh;
+    std::vector<std::pair<std::uint32_t, int>> stack{{0, 0}};
+    while (!stack.empty() && !tree.empty())
+    {
+        const auto [node, depth] = stack.back();
+        stack.pop_back();
+        const auto &n = tree.nodes()[node];
+        if (depth == level || (n.isLeaf() && depth < level))
+        {
+            VolumeTraits<Volume>::appendMesh(n.volume, mesh);
+            continue;
+        }
+        if (!n.isLeaf())
+        {
+            stack.push_back({std::uint32_t(n.firstChild + 1), depth + 1});
+            stack.push_back({std::uint32_t(n.firstChild), depth + 1});
+        }
+    }
+    obj << "g " << group << '\n';
+    for (const Vec3 &v : mesh.vertices)
+        obj << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+    for (const auto &t : mesh.triangles)
+        obj << "f " << vertexBase + t[0] + 1 << ' ' << vertexBase + t[1] + 1 << ' ' << vertexBase + t[2] + 1 << '\n';
+    vertexBase += mesh.vertices.size();
+}
+}  // namespace
+
+template <class Volume>
+bool VolumeTreeChecker<Volume>::exportLevel(int level, std::ostream &obj) const
+{
+    std::size_t base = 0;
+    obj << "# " << VolumeTraits<Volume>::kName << " volumes of tree level " << level
+        << " (leaves above that level included)\n";
+    writeLevel(robotTree_, level, "robot", obj, base);
+    writeLevel(environmentTree_, level, "environment", obj, base);
+    return true;
+}
+
+template <class Volume>
+std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies(bool withVolumeRatios) const
 {
     const std::string kind = VolumeTraits<Volume>::kName;
     std::vector<HierarchyReport> reports = {{"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
@@ -276,6 +346,11 @@ std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies() const
             {"environment " + kind + " tree", environmentTree_.nodes().size(), environmentTree_.depth(),
              environmentTree_.buildSeconds(), environmentTree_.memoryBytes() +
                                                   environmentTriangleBounds_.capacity() * sizeof(TriangleBounds)}};
+    if (withVolumeRatios)
+    {
+        std::tie(reports[0].meanVolumeRatio, reports[0].ratioNodes) = meanVolumeRatio(robotTree_);
+        std::tie(reports[1].meanVolumeRatio, reports[1].ratioNodes) = meanVolumeRatio(environmentTree_);
+    }
     if (pieceStage_)
         for (const auto &[label, d] : {std::pair<const char *, const ConvexDecomposition *>{"robot convex pieces", &robotPieces_},
                                       {"environment convex pieces", &environmentPieces_}})

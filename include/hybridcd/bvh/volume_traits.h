@@ -12,6 +12,7 @@
 #include "hybridcd/bv/obb.h"
 
 #include <algorithm>
+#include <array>
 
 #include <cmath>
 #include <vector>
@@ -20,6 +21,17 @@ namespace hcd
 {
 template <class Volume>
 struct VolumeTraits;
+
+/// Vertices and triangles (0-based) to which volumes are appended for export.
+struct ExportMesh
+{
+    std::vector<Vec3> vertices;
+    std::vector<std::array<std::size_t, 3>> triangles;
+};
+
+/// The unit sphere as a UV mesh mapped by x -> center + linear * x (ellipsoids; boxes use the cube).
+void appendMappedSphere(ExportMesh &mesh, const Vec3 &center, const Mat3 &linear);
+void appendMappedCube(ExportMesh &mesh, const Vec3 &center, const Mat3 &linear);
 
 template <>
 struct VolumeTraits<Obb>
@@ -40,6 +52,10 @@ struct VolumeTraits<Obb>
     static double lowerBound(const Obb &a, const Obb &b, double tolerance)
     {
         return obbDistanceLowerBound(a, b, tolerance);
+    }
+    static void appendMesh(const Obb &b, ExportMesh &mesh)
+    {
+        appendMappedCube(mesh, b.center, b.axes * b.halfExtents.asDiagonal());
     }
 };
 
@@ -71,6 +87,10 @@ struct VolumeTraits<Ellipsoid>
             return 0.0;
         const Vec3 u = d / n;
         return std::max(0.0, n - a.supportRadius(u) - b.supportRadius(u) - tolerance);
+    }
+    static void appendMesh(const Ellipsoid &e, ExportMesh &mesh)
+    {
+        appendMappedSphere(mesh, e.center, e.axes * e.semiAxes.asDiagonal());
     }
 };
 
@@ -106,6 +126,11 @@ struct VolumeTraits<HybridVolume<EllipsoidFirst>>
     {
         return std::max(VolumeTraits<Obb>::lowerBound(a.box, b.box, tolerance),
                         VolumeTraits<Ellipsoid>::lowerBound(a.ellipsoid, b.ellipsoid, tolerance));
+    }
+    static void appendMesh(const Volume &v, ExportMesh &mesh)
+    {
+        VolumeTraits<Obb>::appendMesh(v.box, mesh);
+        VolumeTraits<Ellipsoid>::appendMesh(v.ellipsoid, mesh);
     }
 };
 }  // namespace hcd

@@ -20,7 +20,7 @@ public:
     std::string name() const override { return "fcl"; }
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    std::vector<HierarchyReport> hierarchies() const override;
+    std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
 
 private:
     struct Models;

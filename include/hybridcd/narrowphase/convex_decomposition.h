@@ -29,6 +29,12 @@ struct ConvexDecomposition
 template <class Volume>
 ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree);
 
+/// The facets of a hull as polygons (vertices in order around each facet).
+std::vector<std::vector<Vec3>> facetPolygons(const ConvexPiece &hull);
+
+/// Volume enclosed by a hull (0 for flat ones).
+double hullVolume(const ConvexPiece &hull);
+
 /// Largest distance from points on the hull's facets (their corners, centroids and a grid of
 /// `samplesPerEdge` x `samplesPerEdge` barycentric points) to the nearest of `triangles` of `mesh`.
 double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles,

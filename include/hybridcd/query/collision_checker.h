@@ -6,6 +6,8 @@
 #include "hybridcd/query/collision_scene.h"
 
 #include <cstdint>
+#include <limits>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,10 @@ struct HierarchyReport
     std::size_t depth = 0;
     double buildSeconds = 0.0;
     std::size_t memoryBytes = 0;
+    /// Mean over sampled non-flat nodes of (node volume) / (volume of the convex hull of the node's
+    /// triangles): how tightly the volumes wrap their content. NaN when not measured.
+    double meanVolumeRatio = std::numeric_limits<double>::quiet_NaN();
+    std::size_t ratioNodes = 0;  ///< nodes the mean was taken over
 };
 
 /// Answers "does the robot at this pose touch the environment?". Touching counts as collision.
@@ -54,7 +60,22 @@ public:
         return distance(worldFromRobot, stats) <= delta;
     }
 
-    /// Hierarchies built for this checker (empty for brute force).
-    virtual std::vector<HierarchyReport> hierarchies() const { return {}; }
+    /// Hierarchies built for this checker (empty for brute force). `withVolumeRatios` also measures
+    /// the node/content volume ratios (costly: a convex hull per sampled node).
+    virtual std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const
+    {
+        (void)withVolumeRatios;
+        return {};
+    }
+
+    /// Writes the volumes of tree level `level` (the root is level 0) of the robot and environment
+    /// hierarchies as Wavefront OBJ meshes (two groups, robot in its own frame). Returns false when
+    /// this checker has no such hierarchy.
+    virtual bool exportLevel(int level, std::ostream &obj) const
+    {
+        (void)level;
+        (void)obj;
+        return false;
+    }
 };
 }  // namespace hcd

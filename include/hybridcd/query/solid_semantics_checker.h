@@ -34,7 +34,11 @@ public:
     /// 0 when the surfaces touch or one object is inside the other; otherwise the surface distance.
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
-    std::vector<HierarchyReport> hierarchies() const override { return surface_->hierarchies(); }
+    std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override
+    {
+        return surface_->hierarchies(withVolumeRatios);
+    }
+    bool exportLevel(int level, std::ostream &obj) const override { return surface_->exportLevel(level, obj); }
 
     /// True when, the surfaces being disjoint, one object lies inside a solid of the other.
     bool contained(const RigidTransform &worldFromRobot) const;

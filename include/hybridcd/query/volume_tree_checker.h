@@ -36,7 +36,8 @@ public:
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
-    std::vector<HierarchyReport> hierarchies() const override;
+    std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
+    bool exportLevel(int level, std::ostream &obj) const override;
 
     const VolumeTree<Volume> &robotTree() const { return robotTree_; }
     const VolumeTree<Volume> &environmentTree() const { return environmentTree_; }
