@@ -8,6 +8,8 @@
 #include "hybridcd/query/checker_registry.h"
 
 #include <chrono>
+#include <iomanip>
+#include <sstream>
 #include <iostream>
 
 namespace hcd::cli
@@ -36,6 +38,40 @@ int runCheck(const std::vector<std::string> &args)
     std::cerr << "checked " << poses.size() << " poses with '" << checker->name() << "': " << free << " free, "
               << poses.size() - free << " colliding; mean "
               << (poses.empty() ? 0.0 : 1e9 * seconds / double(poses.size())) << " ns per check\n";
+    return kSuccess;
+}
+}  // namespace hcd::cli
+
+namespace hcd::cli
+{
+int runContacts(const std::vector<std::string> &args)
+{
+    const CommandLine cl(args, withCheckerOptions({"states", "checker", "limit"}), {"surface-only"});
+    if (!cl.has("states"))
+        throw UsageError("contacts needs --states FILE");
+    const long long limit = cl.integer("limit", 1000);
+    if (limit < 1)
+        throw UsageError("--limit needs a positive number");
+    const LoadedProblem problem = loadProblem(cl.problem());
+    const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
+    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl));
+    std::ostringstream out;
+    out << std::setprecision(10);
+    for (std::size_t p = 0; p < poses.size(); ++p)
+    {
+        const auto found = checker->contacts(poseToTransform(poses[p], problem.config.planar), std::size_t(limit));
+        out << "pose " << p + 1 << " (line " << poses[p].line << "): " << found.size() << " contact"
+            << (found.size() == 1 ? "" : "s") << (found.size() == std::size_t(limit) ? " (limit reached)" : "") << '\n';
+        for (const ContactPair &c : found)
+        {
+            const char *kind = c.kind == ContactPair::Kind::Triangles ? "triangles"
+                               : c.kind == ContactPair::Kind::Pieces ? "pieces"
+                                                                     : "containment (components)";
+            out << "  " << kind << " robot " << c.robotElement << " environment " << c.environmentElement << " at "
+                << c.witness.x() << ' ' << c.witness.y() << ' ' << c.witness.z() << '\n';
+        }
+    }
+    std::cout << out.str();
     return kSuccess;
 }
 }  // namespace hcd::cli

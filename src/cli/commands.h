@@ -13,6 +13,7 @@ int runInspect(const std::vector<std::string> &args);
 int runBench(const std::vector<std::string> &args);
 int runCheckMotion(const std::vector<std::string> &args);
 int runClearance(const std::vector<std::string> &args);
+int runContacts(const std::vector<std::string> &args);
 
 /// Exit statuses shared by all commands.
 enum ExitStatus

@@ -24,6 +24,8 @@ commands:
   check-motion  continuous motion checks: --motions FILE [--checker NAME] [--contact-tolerance FRACTION]
            (two poses per line; prints 1 free, or 0 T with T the last free fraction before contact)
   clearance  distance to the environment per pose: --states FILE [--checker NAME]
+  contacts  intersecting triangles/pieces per pose with a witness point: --states FILE [--checker NAME]
+           [--limit N]
   inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
            [--level K --export FILE.obj]  (write the volumes of tree level K as a mesh)
   bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
@@ -64,6 +66,8 @@ int main(int argc, char **argv)
             return hcd::cli::runCheckMotion(args);
         if (command == "clearance")
             return hcd::cli::runClearance(args);
+        if (command == "contacts")
+            return hcd::cli::runContacts(args);
         throw hcd::cli::UsageError("unknown command '" + command + "'");
     }
     catch (const hcd::cli::UsageError &e)

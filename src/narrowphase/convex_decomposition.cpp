@@ -2,6 +2,7 @@
 #include "hybridcd/narrowphase/convex_decomposition.h"
 
 #include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/narrowphase/linear_program.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +20,11 @@ double distanceToTriangles(const Vec3 &p, const TriangleMesh &mesh, const std::v
     return best;
 }
 }  // namespace
+
+Vec3 triangleContactPoint(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
+{
+    return intersectConvexPieces(ConvexPiece::hullOf({a0, a1, a2}), ConvexPiece::hullOf({b0, b1, b2})).witness;
+}
 
 std::vector<std::vector<Vec3>> facetPolygons(const ConvexPiece &hull)
 {

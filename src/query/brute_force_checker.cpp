@@ -3,6 +3,7 @@
 
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
+#include "hybridcd/narrowphase/convex_decomposition.h"
 
 #include <algorithm>
 
@@ -70,6 +71,25 @@ bool BruteForceChecker::collides(const RigidTransform &worldFromRobot, QueryStat
     if (stats)
         stats->primitiveTests += tests;
     return hit;
+}
+
+std::vector<ContactPair> BruteForceChecker::contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+{
+    std::vector<ContactPair> found;
+    if (!worldFromRobot.isFinite())
+        return found;
+    const TriangleMesh &robot = *scene_.robot, &env = *scene_.environment;
+    for (std::uint32_t i = 0; i < robot.triangleCount() && found.size() < limit; ++i)
+    {
+        const Vec3 a0 = worldFromRobot.apply(robot.corner(i, 0));
+        const Vec3 a1 = worldFromRobot.apply(robot.corner(i, 1));
+        const Vec3 a2 = worldFromRobot.apply(robot.corner(i, 2));
+        for (std::uint32_t j = 0; j < env.triangleCount() && found.size() < limit; ++j)
+            if (trianglesIntersect(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2)))
+                found.push_back({ContactPair::Kind::Triangles, i, j,
+                                 triangleContactPoint(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2))});
+    }
+    return found;
 }
 
 double BruteForceChecker::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const

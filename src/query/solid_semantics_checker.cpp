@@ -40,6 +40,31 @@ bool SolidSemanticsChecker::contained(const RigidTransform &worldFromRobot) cons
     return false;
 }
 
+std::vector<ContactPair> SolidSemanticsChecker::contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+{
+    std::vector<ContactPair> found = surface_->contacts(worldFromRobot, limit);
+    if (!found.empty() || limit == 0 || !worldFromRobot.isFinite())
+        return found;
+    for (std::size_t i = 0; i < robotRepresentatives_.size(); ++i)
+    {
+        const Vec3 w = worldFromRobot.apply(robotRepresentatives_[i]);
+        const int solid = environmentSolids_.solidContaining(w);
+        if (solid >= 0)
+            return {{ContactPair::Kind::Containment, std::uint32_t(i), std::uint32_t(solid), w}};
+    }
+    if (robotSolids_.closedComponentCount() > 0)
+    {
+        const RigidTransform robotFromWorld = worldFromRobot.inverse();
+        for (std::size_t j = 0; j < environmentRepresentatives_.size(); ++j)
+        {
+            const int solid = robotSolids_.solidContaining(robotFromWorld.apply(environmentRepresentatives_[j]));
+            if (solid >= 0)
+                return {{ContactPair::Kind::Containment, std::uint32_t(solid), std::uint32_t(j), environmentRepresentatives_[j]}};
+        }
+    }
+    return found;
+}
+
 bool SolidSemanticsChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
 {
     if (!worldFromRobot.isFinite())

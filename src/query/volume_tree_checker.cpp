@@ -101,7 +101,8 @@ bool VolumeTreeChecker<Volume>::withinDistance(const RigidTransform &worldFromRo
 }
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
+bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats,
+                                              std::vector<ContactPair> *found, std::size_t limit) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -149,7 +150,13 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 const double t = pieceStage_->approximateTolerance;
                 if (t >= 0.0 && robotPieces_.concavity[rp] <= t && environmentPieces_.concavity[ep] <= t)
                 {
-                    hit = true;
+                    if (!found)
+                        hit = true;
+                    else
+                    {
+                        found->push_back({ContactPair::Kind::Pieces, std::uint32_t(rp), std::uint32_t(ep), lp.witness});
+                        hit = found->size() >= limit;
+                    }
                     continue;
                 }
             }
@@ -169,8 +176,15 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                                      : triangleDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2) <=
                                            delta * (1.0 + 1e-9) + tolerance)
                     {
-                        hit = true;
-                        break;
+                        if (!found)
+                        {
+                            hit = true;
+                            break;
+                        }
+                        found->push_back({ContactPair::Kind::Triangles, robotTree_.triangleOrder()[rn.firstTriangle + i], et,
+                                          triangleContactPoint(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)});
+                        if ((hit = found->size() >= limit))
+                            break;
                     }
                 }
             }
@@ -196,6 +210,15 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
         stats->primitiveTests += triangleTests + pieceTests;
     }
     return hit;
+}
+
+template <class Volume>
+std::vector<ContactPair> VolumeTreeChecker<Volume>::contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+{
+    std::vector<ContactPair> found;
+    if (limit > 0 && worldFromRobot.isFinite())
+        anyPairWithin(worldFromRobot, 0.0, nullptr, &found, limit);
+    return found;
 }
 
 template <class Volume>

@@ -3,6 +3,8 @@
 // paths (all collision-free), and on adversarial scenes (exact touching, thin walls, extreme scales).
 #include "support/test_support.h"
 
+#include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/query/checker_registry.h"
 
@@ -177,4 +179,44 @@ TEST(CheckerAgreement, RobotInsideClosedObstacleIsACollision)
         EXPECT_TRUE(makeChecker(name, sceneOf(closedBox, robot))->collides({Mat3::Identity(), Vec3(-5, -5, -5)})) << name;
         EXPECT_EQ(makeChecker(name, sceneOf(robot, closedBox))->distance(inside), 0.0) << name;
     }
+}
+
+TEST(Contacts, WitnessesLieOnBothPartsAndMatchBruteForce)
+{
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
+    test::TestRandom rng(8);
+    const auto poses = test::randomPoses(problem, 300, rng);
+    const TriangleMesh &robot = problem.robot.mesh, &env = problem.world.mesh;
+    std::size_t checkedPoses = 0;
+    for (const std::string &name : {"obb", "lp", "hybrid"})
+    {
+        const auto checker = makeChecker(name, problem.scene, ContactSemantics::SurfaceOnly);
+        const auto reference = makeChecker("bruteforce", problem.scene, ContactSemantics::SurfaceOnly);
+        for (const RigidTransform &pose : poses)
+        {
+            const auto found = checker->contacts(pose, 100000);
+            const auto expected = reference->contacts(pose, 100000);
+            ASSERT_EQ(found.size(), expected.size()) << name;
+            ASSERT_EQ(found.empty(), !checker->collides(pose));
+            for (const ContactPair &c : found)
+            {
+                ASSERT_EQ(c.kind, ContactPair::Kind::Triangles);
+                const Vec3 a0 = pose.apply(robot.corner(c.robotElement, 0)), a1 = pose.apply(robot.corner(c.robotElement, 1)),
+                           a2 = pose.apply(robot.corner(c.robotElement, 2));
+                const Vec3 &b0 = env.corner(c.environmentElement, 0), &b1 = env.corner(c.environmentElement, 1),
+                           &b2 = env.corner(c.environmentElement, 2);
+                ASSERT_TRUE(trianglesIntersect(a0, a1, a2, b0, b1, b2));
+                const double scale = 1.0 + c.witness.norm();
+                EXPECT_LE((c.witness - closestPointOnTriangle(c.witness, a0, a1, a2)).norm(), 1e-9 * scale);
+                EXPECT_LE((c.witness - closestPointOnTriangle(c.witness, b0, b1, b2)).norm(), 1e-9 * scale);
+            }
+            checkedPoses += found.empty() ? 0 : 1;
+        }
+    }
+    EXPECT_GT(checkedPoses, 100u);
+    // Containment is reported as such under solid semantics.
+    const CollisionScene inside = sceneOf(test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1)), test::boxMesh(Vec3(0, 0, 0), Vec3(10, 10, 10)));
+    const auto found = makeChecker("obb", inside)->contacts({Mat3::Identity(), Vec3(5, 5, 5)}, 10);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, ContactPair::Kind::Containment);
 }

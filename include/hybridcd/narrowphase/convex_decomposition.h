@@ -29,6 +29,10 @@ struct ConvexDecomposition
 template <class Volume>
 ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree);
 
+/// A point in both of two intersecting triangles (within 1e-9 relative), from the LP on them as
+/// flat convex pieces: the witness of a triangle contact.
+Vec3 triangleContactPoint(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2);
+
 /// The facets of a hull as polygons (vertices in order around each facet).
 std::vector<std::vector<Vec3>> facetPolygons(const ConvexPiece &hull);
 

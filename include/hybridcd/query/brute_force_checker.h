@@ -17,6 +17,7 @@ public:
     std::string name() const override { return "bruteforce"; }
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
+    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
 
 private:
     struct TriangleBox

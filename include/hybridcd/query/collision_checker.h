@@ -20,6 +20,21 @@ struct QueryStats
     std::uint64_t primitiveTests = 0;
 };
 
+/// One intersecting part pair found by a contact query: the paper's "intersecting parts".
+struct ContactPair
+{
+    enum class Kind
+    {
+        Triangles,    ///< robot triangle and environment triangle (mesh indices)
+        Pieces,       ///< robot and environment convex pieces (LP approximate mode)
+        Containment,  ///< one object inside a solid of the other (component indices)
+    };
+    Kind kind = Kind::Triangles;
+    std::uint32_t robotElement = 0;
+    std::uint32_t environmentElement = 0;
+    Vec3 witness = Vec3::Zero();  ///< a world point in both parts
+};
+
 /// One line of `inspect` output about a checker's data structures.
 struct HierarchyReport
 {
@@ -52,6 +67,15 @@ public:
     /// (decided exactly), otherwise the smallest triangle-to-triangle distance (floating point,
     /// relative error of a few ulps). Infinite when either mesh is empty; 0 for a non-finite pose.
     virtual double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const = 0;
+
+    /// Every intersecting part pair at this pose, up to `limit` of them (empty when free). The
+    /// default implementation reports nothing; hierarchical and brute-force checkers override it.
+    virtual std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+    {
+        (void)worldFromRobot;
+        (void)limit;
+        return {};
+    }
 
     /// Proximity: true when the distance may be at most `delta` (so false proves distance > delta).
     /// Touching gives true for any delta >= 0. Hierarchical checkers override this with an early exit.

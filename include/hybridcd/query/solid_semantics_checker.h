@@ -34,6 +34,8 @@ public:
     /// 0 when the surfaces touch or one object is inside the other; otherwise the surface distance.
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
+    /// The surface contacts, or else a containment record (witness: the contained vertex).
+    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override
     {
         return surface_->hierarchies(withVolumeRatios);

@@ -36,6 +36,7 @@ public:
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
+    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
     bool exportLevel(int level, std::ostream &obj) const override;
 
@@ -47,7 +48,9 @@ public:
 
 private:
     /// Collision (delta = 0, exact triangle test) or proximity (delta > 0) with early exit.
-    bool anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const;
+    /// With `found`, every contact is recorded (up to `limit`) instead of stopping at the first.
+    bool anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats,
+                       std::vector<ContactPair> *found = nullptr, std::size_t limit = 0) const;
     double toleranceFor(const RigidTransform &worldFromRobot) const;
 
     struct TriangleBounds
