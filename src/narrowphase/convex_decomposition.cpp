@@ -88,6 +88,36 @@ double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const
     return worst;
 }
 
+double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles)
+{
+    if (triangles.size() == 1)
+        return 0.0;  // the hull is the triangle itself
+    Vec3 lo = hull.vertices.front(), hi = lo;
+    for (const Vec3 &v : hull.vertices)
+    {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    constexpr int kSteps = 8;
+    const double spacing = (hi - lo).maxCoeff() / kSteps;
+    if (!(spacing > 0.0))
+        return 0.0;
+    // Facet samples at least as dense as the interior grid.
+    const double edge = (hi - lo).norm();
+    const int samplesPerEdge = std::max(4, int(std::ceil(edge / spacing)));
+    double worst = measureConcavity(hull, mesh, triangles, std::min(samplesPerEdge, 32));
+    const double slack = 1e-9 * (1.0 + hull.magnitude());
+    for (int i = 0; i <= kSteps; ++i)
+        for (int j = 0; j <= kSteps; ++j)
+            for (int k = 0; k <= kSteps; ++k)
+            {
+                const Vec3 p = lo + spacing * Vec3(i, j, k);
+                if (hull.maxViolation(p) <= slack)
+                    worst = std::max(worst, distanceToTriangles(p, mesh, triangles));
+            }
+    return worst + spacing;
+}
+
 template <class Volume>
 ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree)
 {
@@ -113,6 +143,7 @@ ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree)
         d.pieceOfNode[i] = std::int32_t(d.pieces.size());
         d.pieces.push_back(ConvexPiece::hullOf(points));
         d.concavity.push_back(measureConcavity(d.pieces.back(), tree.mesh(), triangles));
+        d.approximationBound.push_back(approximationBound(d.pieces.back(), tree.mesh(), triangles));
     }
     d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return d;

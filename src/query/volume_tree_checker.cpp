@@ -148,7 +148,8 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 if (!lp.intersecting)
                     continue;
                 const double t = pieceStage_->approximateTolerance;
-                if (t >= 0.0 && robotPieces_.concavity[rp] <= t && environmentPieces_.concavity[ep] <= t)
+                // Hulls that meet put the triangles within the sum of the two bounds of each other.
+                if (t >= 0.0 && robotPieces_.approximationBound[rp] + environmentPieces_.approximationBound[ep] <= t)
                 {
                     if (!found)
                         hit = true;

@@ -276,7 +276,9 @@ TEST(TimeOfContact, BoxesAgainstAnalyticAnswer)
         }
 
         // The same configuration in a random pose (the answer is invariant).
-        const RigidTransform pose{test::randomRotation(rng), scale * 3.0 * randomInBall(rng)};
+        // (far from the origin for some: coordinates up to 1000 times the boxes' size)
+        const double distance = std::pow(10.0, uniform(rng, 0.0, 3.0));
+        const RigidTransform pose{test::randomRotation(rng), scale * distance * randomInBall(rng)};
         const ConvexPiece moving = ConvexPiece::hullOf(mapped(boxCorners(lo1, hi1), pose));
         const ConvexPiece fixed = ConvexPiece::hullOf(mapped(boxCorners(lo2, hi2), pose));
         const Vec3 displacement = pose.rotation * v;
@@ -400,6 +402,10 @@ TEST(TimeOfContact, ExactCases)
     ASSERT_TRUE(toc.contact);
     EXPECT_NEAR(toc.time, 0.5, 1e-12);
     EXPECT_FALSE(translationalTimeOfContact(left, Vec3(1.99, 0, 0), unit).contact);
+    // A near miss by 2^-26 (1.5e-8) of the size is no contact: only rounding-level gaps count.
+    EXPECT_FALSE(translationalTimeOfContact(left, Vec3(2.0 - std::ldexp(1.0, -26), 0, 0), unit).contact);
+    EXPECT_FALSE(translationalTimeOfContact(left, Vec3(2.0, 0, 0), translated(unit, Vec3(std::ldexp(1.0, -26), 0, 0)))
+                     .contact);
     EXPECT_FALSE(translationalTimeOfContact(left, Vec3(-2, 0, 0), unit).contact);
     // Edge against edge exactly at the end: the box moved diagonally to meet along x = 0, z = 0.
     const ConvexPiece corner = ConvexPiece::hullOf(boxCorners(Vec3(-2, 0.25, -2), Vec3(-1, 0.75, -1)));
@@ -436,6 +442,7 @@ TEST(TimeOfContact, ExactCases)
     ASSERT_TRUE(toc.contact);
     EXPECT_NEAR(toc.time, 0.25, 1e-12);
     EXPECT_FALSE(translationalTimeOfContact(spike, Vec3(0, 0, 0.9990234375), corner3).contact);
+    EXPECT_FALSE(translationalTimeOfContact(spike, Vec3(0, 0, 1.0 - std::ldexp(1.0, -26)), corner3).contact);
     // The same with the fixed piece the one that would move: the relative motion is what counts.
     toc = translationalTimeOfContact(corner3, Vec3(0, 0, -1), spike);
     ASSERT_TRUE(toc.contact);
@@ -467,19 +474,19 @@ TEST(TimeOfContact, AgreesWithStaticNarrowPhase)
     std::uniform_int_distribution<int> count(4, 24);
     const double step = 1e-4;
     const int gridSteps = 10000;
-    int pairs = 0, contacts = 0, ambiguous = 0, gridPairs = 0;
+    int pairs = 0, contacts = 0, ambiguous = 0, gridPairs = 0, gridMisses = 0;
     double lpSeconds = 0.0;
     const auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < 3030; ++i)
+    for (int i = 0; i < 3060; ++i)
     {
-        const bool fullGrid = i < 30;
+        const bool fullGrid = i < 60;
         const double scale = i % 3 == 0 ? 1.0 : (i % 3 == 1 ? 1e4 : 1e-4);
         const ConvexPiece fixed = ConvexPiece::hullOf(randomCloud(rng, count(rng), scale))
                                       .transformed({test::randomRotation(rng), Vec3::Zero()});
         const Vec3 v = scale * uniform(rng, 0.5, 5.0) * randomUnit(rng);
-        const ConvexPiece moving =
-            ConvexPiece::hullOf(randomCloud(rng, count(rng), scale))
-                .transformed({test::randomRotation(rng), -uniform(rng, -0.2, 1.2) * v + scale * 1.2 * randomInBall(rng)});
+        const Vec3 startOffset = -uniform(rng, -0.2, 1.2) * v + scale * 1.2 * randomInBall(rng);
+        const ConvexPiece moving = ConvexPiece::hullOf(randomCloud(rng, count(rng), scale))
+                                       .transformed({test::randomRotation(rng), startOffset});
         const double tolerance = 1e-9 * (pairMagnitude(moving, fixed) + v.norm());
 
         const auto lpStart = std::chrono::steady_clock::now();
@@ -495,6 +502,25 @@ TEST(TimeOfContact, AgreesWithStaticNarrowPhase)
             continue;
         }
         ASSERT_EQ(toc.contact, sweepGap < 0.0) << "pair " << i << ", swept-hull gap " << sweepGap;
+        if (fullGrid)
+        {
+            ++gridPairs;
+            int first = -1;
+            for (int g = 0; g <= gridSteps && first < 0; ++g)
+                if (intersectConvexPieces(translated(moving, g * step * v), fixed).intersecting)
+                    first = g;
+            if (first >= 0)
+            {
+                ASSERT_TRUE(toc.contact) << "pair " << i << ": the static test finds contact at " << first * step;
+                EXPECT_LE(toc.time, first * step + 1e-9) << "pair " << i;
+                if (first > 0)
+                {
+                    EXPECT_GE(toc.time, (first - 1) * step - 1e-9) << "pair " << i;
+                }
+            }
+            else
+                ++gridMisses;
+        }
         if (!toc.contact)
             continue;
         ++contacts;
@@ -509,26 +535,10 @@ TEST(TimeOfContact, AgreesWithStaticNarrowPhase)
                 << "pair " << i << ": contact before grid time " << k * step << ", LP time " << toc.time;
         }
 
-        if (fullGrid)
-        {
-            ++gridPairs;
-            int first = -1;
-            for (int g = 0; g <= gridSteps && first < 0; ++g)
-                if (intersectConvexPieces(translated(moving, g * step * v), fixed).intersecting)
-                    first = g;
-            if (first >= 0)
-            {
-                EXPECT_LE(toc.time, first * step + 1e-9) << "pair " << i;
-                if (first > 0)
-                {
-                    EXPECT_GE(toc.time, (first - 1) * step - 1e-9) << "pair " << i;
-                }
-            }
-        }
     }
-    std::printf("[random hulls vs static narrow phase] %d pairs (%d on the full 1e-4 grid), %d contacts, %d grazing "
-                "(skipped); LP %.2f us/pair; %.2f s in all\n",
-                pairs, gridPairs, contacts, ambiguous, 1e6 * lpSeconds / pairs, seconds(start));
+    std::printf("[random hulls vs static narrow phase] %d pairs (%d on the full 1e-4 grid, %d of them without "
+                "contact), %d contacts, %d grazing (skipped); LP %.2f us/pair; %.2f s in all\n",
+                pairs, gridPairs, gridMisses, contacts, ambiguous, 1e6 * lpSeconds / pairs, seconds(start));
     EXPECT_GT(contacts, pairs / 4);
     EXPECT_LT(contacts, pairs * 9 / 10);
     EXPECT_LT(ambiguous, pairs / 50);
@@ -682,7 +692,8 @@ TEST(Penetration, BoxesAgainstAnalyticAnswer)
     // Degenerate pieces: a flat square pushed into a box, a point inside one.
     const ConvexPiece unit = ConvexPiece::hullOf(boxCorners(Vec3(0, 0, 0), Vec3(1, 1, 1)));
     const ConvexPiece square =
-        ConvexPiece::hullOf({Vec3(0.25, 0.25, 0.75), Vec3(0.75, 0.25, 0.75), Vec3(0.75, 0.75, 0.75), Vec3(0.25, 0.75, 0.75)});
+        ConvexPiece::hullOf({Vec3(0.25, 0.25, 0.75), Vec3(0.75, 0.25, 0.75), Vec3(0.75, 0.75, 0.75),
+                             Vec3(0.25, 0.75, 0.75)});
     Penetration pd = penetrationDepth(square, unit);
     ASSERT_TRUE(pd.intersecting);
     EXPECT_NEAR(pd.depth, 0.25, 1e-12);
@@ -750,6 +761,20 @@ TEST(DirectionalPenetration, BoxesAgainstAnalyticAnswer)
     // A unit box fully overlapping itself: moving back along any axis takes its full width.
     EXPECT_NEAR(directionalPenetration(unit, Vec3(0, 0, 5), unit), 1.0, 1e-12);
     EXPECT_NEAR(directionalPenetration(unit, Vec3(1, 1, 0), unit), std::sqrt(2.0), 1e-12);
+    // Overlapping by 2^-26 of the size, touching, and 2^-26 apart (dyadic: exact).
+    const double sliver = std::ldexp(1.0, -26);
+    const ConvexPiece right = ConvexPiece::hullOf(boxCorners(Vec3(1 - sliver, 0.25, 0.25), Vec3(2, 0.75, 0.75)));
+    EXPECT_NEAR(directionalPenetration(right, Vec3(-1, 0, 0), unit), sliver, 1e-15);
+    EXPECT_NEAR(directionalPenetration(right, Vec3(-1, 0.5, 0), unit), sliver * std::sqrt(1.25), 1e-15);
+    EXPECT_NEAR(directionalPenetration(translated(right, Vec3(sliver, 0, 0)), Vec3(-1, 0, 0), unit), 0.0, 1e-15);
+    EXPECT_EQ(directionalPenetration(translated(right, Vec3(2 * sliver, 0, 0)), Vec3(-1, 0, 0), unit), 0.0);
+    // Moving back along the motion would make a disjoint pair overlap: still 0 (they do not meet now).
+    EXPECT_EQ(directionalPenetration(translated(right, Vec3(2 * sliver, 0, 0)), Vec3(1, 0, 0), unit), 0.0);
+    // A flat square inside the box, having come down: back up by 1/4 to its top face.
+    const ConvexPiece square =
+        ConvexPiece::hullOf({Vec3(0.25, 0.25, 0.75), Vec3(0.75, 0.25, 0.75), Vec3(0.75, 0.75, 0.75),
+                             Vec3(0.25, 0.75, 0.75)});
+    EXPECT_NEAR(directionalPenetration(square, Vec3(0, 0, -1), unit), 0.25, 1e-12);
 }
 }  // namespace
 }  // namespace hcd

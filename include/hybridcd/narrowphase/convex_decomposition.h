@@ -20,7 +20,11 @@ namespace hcd
 struct ConvexDecomposition
 {
     std::vector<ConvexPiece> pieces;   ///< one per leaf, in the mesh's own frame
-    std::vector<double> concavity;     ///< per piece, in mesh units
+    std::vector<double> concavity;     ///< per piece, in mesh units: how far the hull surface stands out
+    /// Per piece: an upper bound on the distance from ANY point of the hull (surface or inside) to
+    /// the covered triangles. Two pieces whose hulls meet have triangles within the sum of their
+    /// bounds of each other, which is what the LP checker's approximate mode relies on.
+    std::vector<double> approximationBound;
     std::vector<std::int32_t> pieceOfNode;  ///< tree node -> piece index, -1 for internal nodes
     double seconds = 0.0;              ///< time to build the hulls and measure concavity
 };
@@ -38,6 +42,12 @@ std::vector<std::vector<Vec3>> facetPolygons(const ConvexPiece &hull);
 
 /// Volume enclosed by a hull (0 for flat ones).
 double hullVolume(const ConvexPiece &hull);
+
+/// Upper bound on max over points x of the hull of the distance from x to `triangles`: the largest
+/// distance over a grid of interior points and the facet samples, plus the grid spacing (the
+/// distance function is 1-Lipschitz, and every hull point is within one spacing of a sample).
+/// Exactly 0 for a piece that is the hull of a single triangle.
+double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles);
 
 /// Largest distance from points on the hull's facets (their corners, centroids and a grid of
 /// `samplesPerEdge` x `samplesPerEdge` barycentric points) to the nearest of `triangles` of `mesh`.

@@ -18,8 +18,9 @@ namespace hcd
 /// The LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is
 /// tested by linear programming before any triangle. Exact mode (tolerance < 0): an LP "disjoint"
 /// rejects the leaf pair, an LP "intersecting" is confirmed by the exact triangle tests.
-/// Approximate mode (tolerance T >= 0): pieces whose concavity is at most T decide alone, so
-/// contact may be reported up to T early but never missed.
+/// Approximate mode (tolerance T >= 0): a pair of pieces whose approximation bounds (how far any
+/// point of a hull may be from its triangles) add up to at most T decides alone, so contact may be
+/// reported when the triangles are up to T apart, but is never missed.
 struct PieceStage
 {
     unsigned leafTriangles = 8;
