@@ -3,6 +3,8 @@
 // exact triangle-triangle test (generic and coplanar inputs), the orientation predicate.
 //
 //   build/bench/hybridcd_bench_micro --benchmark_format=json > micro.json
+#include "hybridcd/bv/ellipsoid.h"
+#include "hybridcd/bv/minimum_volume_ellipsoid.h"
 #include "hybridcd/bv/obb.h"
 #include "hybridcd/geometry/exact_predicates.h"
 #include "hybridcd/geometry/triangle_distance.h"
@@ -63,6 +65,39 @@ void BM_ObbOverlap(benchmark::State &state)
     state.counters["overlap fraction"] = double(hits) / double(i);
 }
 BENCHMARK(BM_ObbOverlap);
+
+// The same kind of random pairs as BM_ObbOverlap (random axes, extents 0.1..1, centres within 2).
+void BM_EllipsoidOverlap(benchmark::State &state)
+{
+    std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.1, 1.0);
+    std::vector<std::pair<Ellipsoid, Ellipsoid>> pairs(1024);
+    for (auto &p : pairs)
+    {
+        p.first = Ellipsoid::fromAxes(Vec3::Zero(), randomRotation(), Vec3(e(rng), e(rng), e(rng)));
+        p.second = Ellipsoid::fromAxes(Vec3(u(rng), u(rng), u(rng)) * 2.0, randomRotation(), Vec3(e(rng), e(rng), e(rng)));
+    }
+    std::size_t i = 0, hits = 0;
+    for (auto _ : state)
+    {
+        const auto &p = pairs[i & 1023];
+        hits += ellipsoidsOverlap(p.first, p.second);
+        ++i;
+    }
+    state.counters["overlap fraction"] = double(hits) / double(i);
+}
+BENCHMARK(BM_EllipsoidOverlap);
+
+// MVEE of a random cloud of `range(0)` points (hull candidates, cardinality reduction, tolerance 1e-3).
+void BM_MveeFit(benchmark::State &state)
+{
+    std::normal_distribution<double> n;
+    std::vector<Vec3> points(std::size_t(state.range(0)));
+    for (auto &p : points)
+        p = Vec3(3.0 * n(rng), n(rng), 0.5 * n(rng));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(fitMinimumVolumeEllipsoid(points));
+}
+BENCHMARK(BM_MveeFit)->Arg(24)->Arg(300)->Arg(3000);
 
 void BM_TriangleTest(benchmark::State &state, double spread, bool coplanar)
 {

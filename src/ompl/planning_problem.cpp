@@ -102,7 +102,7 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
                                                      std::shared_ptr<const CollisionChecker> checker, MotionCheck motion)
 {
     const ob::SpaceInformationPtr &si = planning.setup->getSpaceInformation();
-    planning.validity = std::make_shared<StateValidityChecker>(si, std::move(checker), problem.config.planar);
+    planning.validity = std::make_shared<StateValidityChecker>(si, std::move(checker), problem.scene, problem.config.planar);
     si->setStateValidityChecker(planning.validity);
     if (motion == MotionCheck::Continuous)
     {

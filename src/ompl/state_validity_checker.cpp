@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/ompl/state_validity_checker.h"
 
+#include "hybridcd/query/penetration_estimate.h"
+
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -22,10 +24,12 @@ RigidTransform poseOfState(const ompl::base::State *state, bool planar)
 }
 
 StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr &si,
-                                           std::shared_ptr<const CollisionChecker> checker, bool planar)
-    : ompl::base::StateValidityChecker(si), checker_(std::move(checker)), planar_(planar)
+                                           std::shared_ptr<const CollisionChecker> checker, CollisionScene scene,
+                                           bool planar)
+    : ompl::base::StateValidityChecker(si), checker_(std::move(checker)), scene_(std::move(scene)), planar_(planar)
 {
-    specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
+    specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
+    specs_.hasValidDirectionComputation = false;
 }
 
 template <typename Query>
@@ -52,7 +56,37 @@ bool StateValidityChecker::collisionFree(const ompl::base::State *state) const
 double StateValidityChecker::clearance(const ompl::base::State *state) const
 {
     const RigidTransform pose = poseOfState(state, planar_);
-    return timed([&] { return checker_->distance(pose); });
+    const double d = timed([&] { return checker_->distance(pose); });
+    if (d > 0.0)
+        return d;
+    return -estimatePenetration(*checker_, scene_, pose, 0).depth;
+}
+
+bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist) const
+{
+    dist = clearance(state);
+    return si_->satisfiesBounds(state) && dist > 0.0;
+}
+
+bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist, ompl::base::State *validState,
+                                   bool &validStateAvailable) const
+{
+    validStateAvailable = false;
+    const bool valid = isValid(state, dist);
+    if (valid || !validState)
+        return valid;
+    const PenetrationEstimate estimate = estimatePenetration(*checker_, scene_, poseOfState(state, planar_));
+    if (!estimate.freePose)
+        return false;
+    // The pushed-out pose as a state: same orientation, new position.
+    si_->copyState(validState, state);
+    const Vec3 &t = estimate.freePose->translation;
+    if (planar_)
+        validState->as<ompl::base::SE2StateSpace::StateType>()->setXY(t.x(), t.y());
+    else
+        validState->as<ompl::base::SE3StateSpace::StateType>()->setXYZ(t.x(), t.y(), t.z());
+    validStateAvailable = si_->satisfiesBounds(validState) && collisionFree(validState);
+    return false;
 }
 
 bool StateValidityChecker::poseCollides(const RigidTransform &worldFromRobot) const

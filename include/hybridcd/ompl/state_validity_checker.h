@@ -20,16 +20,27 @@ RigidTransform poseOfState(const ompl::base::State *state, bool planar);
 class StateValidityChecker : public ompl::base::StateValidityChecker
 {
 public:
+    /// `scene` is what `checker` was built over (needed for penetration estimates).
     StateValidityChecker(const ompl::base::SpaceInformationPtr &si, std::shared_ptr<const CollisionChecker> checker,
-                         bool planar);
+                         CollisionScene scene, bool planar);
 
     bool isValid(const ompl::base::State *state) const override;
 
     /// Collision test alone, without the bounds (still counted and timed).
     bool collisionFree(const ompl::base::State *state) const;
 
-    /// Distance to the environment (0 in contact), counted and timed as a check.
+    /// Distance to the environment when free (exact up to rounding); when colliding, minus the
+    /// penetration estimate (the deepest pairwise penetration, see penetration_estimate.h). The
+    /// specs say APPROXIMATE because of the colliding case. Counted and timed as a check.
     double clearance(const ompl::base::State *state) const override;
+
+    /** \brief As isValid(state); also reports the clearance in `dist` and, for a colliding state,
+        offers in `validState` a nearby state pushed out along penetration vectors, verified valid
+        (bounds and collisions) before `validStateAvailable` is set. */
+    bool isValid(const ompl::base::State *state, double &dist, ompl::base::State *validState,
+                 bool &validStateAvailable) const override;
+    bool isValid(const ompl::base::State *state, double &dist) const override;
+    using ompl::base::StateValidityChecker::isValid;
 
     /// Counted and timed forms of the checker's queries for a pose, for the motion validator.
     bool poseCollides(const RigidTransform &worldFromRobot) const;
@@ -49,6 +60,7 @@ private:
     auto timed(const Query &query) const;
 
     std::shared_ptr<const CollisionChecker> checker_;
+    CollisionScene scene_;
     bool planar_;
     mutable std::atomic<std::uint64_t> checks_{0};
     mutable std::atomic<std::uint64_t> nanoseconds_{0};

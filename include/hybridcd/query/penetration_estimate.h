@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Penetration of a colliding robot pose: a depth estimate and a nearby collision-free pose.
+//
+// Exact penetration depth between non-convex meshes is out of reach in general; what planners use
+// is a direction to push out along and a state that is verified free. Each intersecting triangle
+// pair (from the checker's contact query) is a pair of flat convex pieces whose exact penetration
+// vector (penetration.h) says how far the robot triangle must move to leave the other; the deepest
+// pair gives the estimate (a lower bound on the depth needed to separate the meshes along that
+// direction). Pushing the robot out by it, and repeating on whatever still touches, usually ends in
+// a free pose within a few steps; a pose is only returned after the checker says it is free.
+#pragma once
+
+#include "hybridcd/query/collision_checker.h"
+
+#include <optional>
+
+namespace hcd
+{
+struct PenetrationEstimate
+{
+    bool colliding = false;
+    double depth = 0.0;           ///< deepest pairwise penetration (0 when free or only contained)
+    Vec3 direction = Vec3::Zero();  ///< unit world direction to move the robot along to reduce it
+    std::optional<RigidTransform> freePose;  ///< a verified collision-free pose nearby, when found
+};
+
+/// Estimates the penetration at `worldFromRobot` and searches (at most `maxSteps` push-outs) for a
+/// free pose by translation. For a free pose: colliding = false and freePose = the pose itself.
+PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
+                                        const RigidTransform &worldFromRobot, int maxSteps = 20);
+}  // namespace hcd
