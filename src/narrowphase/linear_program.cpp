@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/narrowphase/linear_program.h"
 
+#include "hybridcd/narrowphase/candidate_axes.h"
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -335,57 +337,13 @@ public:
 
     double run(Vec3 *axis)
     {
-        for (const Vec3 &n : a_.normals)
-            consider(n);
-        for (const Vec3 &n : b_.normals)
-            consider(n);
-        const std::vector<Vec3> edgesA = edgeDirections(a_), edgesB = edgeDirections(b_);
-        for (const Vec3 &ea : edgesA)
-            for (const Vec3 &eb : edgesB)
-                consider(ea.cross(eb));
-        // A degenerate Minkowski difference (a segment or point against a flat or degenerate
-        // piece) has facets that neither piece's faces nor the edge crosses supply.
-        if (std::min(a_.dimension, b_.dimension) <= 1)
-        {
-            for (const Vec3 &ea : edgesA)
-                for (const Vec3 &n : b_.normals)
-                    consider(ea.cross(n));
-            for (const Vec3 &eb : edgesB)
-                for (const Vec3 &n : a_.normals)
-                    consider(eb.cross(n));
-            for (const Vec3 &ea : edgesA)
-                for (const Vec3 &eb : edgesB)
-                {
-                    const Vec3 k = ea.cross(eb);
-                    consider(k.cross(ea));
-                    consider(k.cross(eb));
-                }
-        }
-        if (std::max(a_.dimension, b_.dimension) <= 1)
-            for (const Vec3 &va : a_.vertices)
-                for (const Vec3 &vb : b_.vertices)
-                {
-                    const Vec3 w = vb - va;
-                    consider(w);
-                    for (const std::vector<Vec3> *edges : {&edgesA, &edgesB})
-                        for (const Vec3 &e : *edges)
-                            consider(e.cross(w.cross(e)));
-                }
+        forEachCandidateAxis(a_, b_, [this](const Vec3 &u) { consider(u); });
         if (axis)
             *axis = bestAxis_;
         return best_;
     }
 
 private:
-    static std::vector<Vec3> edgeDirections(const ConvexPiece &p)
-    {
-        std::vector<Vec3> directions;
-        directions.reserve(p.edges.size());
-        for (const auto &e : p.edges)
-            directions.push_back(p.vertices[std::size_t(e[1])] - p.vertices[std::size_t(e[0])]);
-        return directions;
-    }
-
     static void project(const std::vector<Vec3> &points, const Vec3 &n, double &lo, double &hi)
     {
         lo = std::numeric_limits<double>::infinity();

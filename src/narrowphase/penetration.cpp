@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/narrowphase/penetration.h"
 
+#include "hybridcd/narrowphase/candidate_axes.h"
+
 #include "hybridcd/narrowphase/linear_program.h"
 
 #include <algorithm>
@@ -21,28 +23,6 @@ constexpr double kBox = 4.0;
 // translation that keeps them meeting is at most its diagonal, 2 sqrt 3 < 4.
 constexpr double kMaxBack = 8.0;
 
-// Unit edge directions with exact and near-exact parallels removed (a box has twelve edges but
-// three directions): parallel edges give the same cross products, and the edge-pair loop is the
-// search's cost.
-std::vector<Vec3> edgeDirections(const ConvexPiece &p)
-{
-    std::vector<Vec3> directions;
-    directions.reserve(p.edges.size());
-    for (const auto &e : p.edges)
-    {
-        const Vec3 d = p.vertices[std::size_t(e[1])] - p.vertices[std::size_t(e[0])];
-        const double length = d.norm();
-        if (!(length > 0.0) || !std::isfinite(length))
-            continue;
-        const Vec3 u = d / length;
-        // 1e-12 rad: far below anything that could change which candidate wins.
-        if (std::none_of(directions.begin(), directions.end(),
-                         [&](const Vec3 &w) { return u.cross(w).squaredNorm() <= 1e-24; }))
-            directions.push_back(u);
-    }
-    return directions;
-}
-
 // Minimum over candidate directions of h(n) = max_B n.b - min_A n.a (see the header).
 class CandidateSearch
 {
@@ -51,43 +31,7 @@ public:
 
     Penetration run()
     {
-        for (const Vec3 &n : a_.normals)
-            consider(n);
-        for (const Vec3 &n : b_.normals)
-            consider(n);
-        const std::vector<Vec3> edgesA = edgeDirections(a_), edgesB = edgeDirections(b_);
-        for (const Vec3 &ea : edgesA)
-            for (const Vec3 &eb : edgesB)
-                consider(ea.cross(eb));
-        // A degenerate Minkowski difference (a segment or point against a flat or degenerate
-        // piece) has facets that neither piece's faces nor the edge crosses supply; the same
-        // extra axes as the separating-axis test (linear_program.cpp).
-        if (std::min(a_.dimension, b_.dimension) <= 1)
-        {
-            for (const Vec3 &ea : edgesA)
-                for (const Vec3 &n : b_.normals)
-                    consider(ea.cross(n));
-            for (const Vec3 &eb : edgesB)
-                for (const Vec3 &n : a_.normals)
-                    consider(eb.cross(n));
-            for (const Vec3 &ea : edgesA)
-                for (const Vec3 &eb : edgesB)
-                {
-                    const Vec3 k = ea.cross(eb);
-                    consider(k.cross(ea));
-                    consider(k.cross(eb));
-                }
-        }
-        if (std::max(a_.dimension, b_.dimension) <= 1)
-            for (const Vec3 &va : a_.vertices)
-                for (const Vec3 &vb : b_.vertices)
-                {
-                    const Vec3 w = vb - va;
-                    consider(w);
-                    for (const std::vector<Vec3> *edges : {&edgesA, &edgesB})
-                        for (const Vec3 &e : *edges)
-                            consider(e.cross(w.cross(e)));
-                }
+        forEachCandidateAxis(a_, b_, [this](const Vec3 &axis) { consider(axis); });
 
         Penetration result;
         const double tolerance =
