@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Installs what is missing, then configures and builds hybridcd (Release) in ./build.
+# Extra arguments go to CMake, e.g. -DHYBRIDCD_BUILD_BENCH=OFF; with none, everything is built
+# (library, CLI, tests, benchmarks).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-deps.sh"

@@ -5,6 +5,6 @@
 # tests that need them skip with a message when they are absent.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-bash "$root/scripts/build.sh" -DHYBRIDCD_BUILD_TESTS=ON
+bash "$root/scripts/build.sh" -DHYBRIDCD_BUILD_TESTS=ON -DHYBRIDCD_BUILD_BENCH=OFF
 cd "$root/build"
 ctest --output-on-failure -j"$(nproc)" --timeout 900
