@@ -72,8 +72,8 @@ int main(int argc, char **argv)
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
     std::cout << "| problem | checker | median ns/check | mean ns/check | median vs fcl | in collision | "
-                 "disagreements with bruteforce | build ms |\n"
-              << "|---|---|---:|---:|---:|---:|---:|---:|\n";
+                 "disagreements with bruteforce | build ms | volume tests/check |\n"
+              << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string &cfg : problems)
     {
         const LoadedProblem problem = loadProblem(cfg);
@@ -107,10 +107,11 @@ int main(int argc, char **argv)
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
             std::vector<double> ns(poses.size());
             std::size_t colliding = 0, disagreements = 0;
+            QueryStats work;
             for (std::size_t i = 0; i < poses.size(); ++i)
             {
                 const auto t0 = std::chrono::steady_clock::now();
-                const bool hit = checker->collides(poses[i]);
+                const bool hit = checker->collides(poses[i], &work);
                 ns[i] = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
                 colliding += hit;
                 if (reference && bool(truth[i]) != hit)
@@ -125,7 +126,8 @@ int main(int argc, char **argv)
                 << medians[name] << " | " << mean << " | %RATIO% | " << std::setprecision(1)
                 << 100.0 * double(colliding) / double(poses.size()) << "% | "
                 << (reference ? std::to_string(disagreements) : std::string("-")) << " | " << std::setprecision(1)
-                << buildMs << " |";
+                << buildMs << " | " << std::setprecision(0) << double(work.boundingVolumeTests) / double(poses.size())
+                << " |";
             rows.push_back(row.str());
         }
         std::size_t r = 0;
