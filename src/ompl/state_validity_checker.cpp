@@ -94,6 +94,12 @@ bool StateValidityChecker::poseCollides(const RigidTransform &worldFromRobot) co
     return timed([&] { return checker_->collides(worldFromRobot); });
 }
 
+bool StateValidityChecker::poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
+                                                   double radialSlack, double robotRadius) const
+{
+    return timed([&] { return checker_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius); });
+}
+
 bool StateValidityChecker::poseWithinDistance(const RigidTransform &worldFromRobot, double delta) const
 {
     return timed([&] { return checker_->withinDistance(worldFromRobot, delta); });

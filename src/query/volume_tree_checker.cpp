@@ -66,6 +66,13 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
       environmentMagnitude_(scene_.environment->radiusAboutOrigin()),
       pieceStage_(pieces)
 {
+    // How far each robot node and triangle reaches from the robot origin (for swept proximity).
+    const TriangleMesh &robot = *scene_.robot;
+    for (const auto &node : robotTree_.nodes())
+        robotNodeReach_.push_back((VolumeTraits<Volume>::center(node.volume).norm() + node.radius) * (1.0 + 1e-12));
+    for (std::size_t t = 0; t < robot.triangleCount(); ++t)
+        robotTriangleReach_.push_back(
+            std::max({robot.corner(t, 0).norm(), robot.corner(t, 1).norm(), robot.corner(t, 2).norm()}) * (1.0 + 1e-12));
     if (pieceStage_)
     {
         robotPieces_ = decomposeLeaves(robotTree_);
@@ -91,17 +98,25 @@ double VolumeTreeChecker<Volume>::toleranceFor(const RigidTransform &worldFromRo
 template <class Volume>
 bool VolumeTreeChecker<Volume>::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
 {
-    return anyPairWithin(worldFromRobot, 0.0, stats);
+    return anyPairWithin(worldFromRobot, {}, stats);
 }
 
 template <class Volume>
 bool VolumeTreeChecker<Volume>::withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
 {
-    return anyPairWithin(worldFromRobot, std::max(0.0, delta), stats);
+    return anyPairWithin(worldFromRobot, {std::max(0.0, delta), 0.0}, stats);
 }
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats,
+bool VolumeTreeChecker<Volume>::withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
+                                                    double radialSlack, double robotRadius, QueryStats *stats) const
+{
+    (void)robotRadius;  // per-node reaches are tighter than the robot's radius
+    return anyPairWithin(worldFromRobot, {std::max(0.0, translationSlack), std::max(0.0, radialSlack)}, stats);
+}
+
+template <class Volume>
+bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryStats *stats,
                                               std::vector<ContactPair> *found, std::size_t limit) const
 {
     if (!worldFromRobot.isFinite())
@@ -110,8 +125,9 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
         return false;
 
     const double tolerance = toleranceFor(worldFromRobot);
-    // Exact comparisons on coordinates need no tolerance; the proximity slack covers delta.
-    const double boundsSlack = delta > 0.0 ? delta * (1.0 + 1e-9) + tolerance : 0.0;
+    // A robot part at distance r from the robot origin may be `slack.at(r)` away from where the
+    // pose puts it; a pair of parts is "within" when they come that close. Collision: slack 0.
+    const bool proximity = slack.translation > 0.0 || slack.radial > 0.0;
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
@@ -132,13 +148,14 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
         // tolerance by delta keeps every pair closer than delta (the axes have length <= 1).
         using Traits = VolumeTraits<Volume>;
         const Volume &robotVolume = placed.volume(pair.robot);
+        const double delta = slack.at(robotNodeReach_[pair.robot]);
         const double reach = rn.radius + en.radius + tolerance + delta;
         if ((Traits::center(robotVolume) - Traits::center(en.volume)).squaredNorm() > reach * reach ||
             !Traits::overlap(robotVolume, en.volume, tolerance + delta))
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
-            if (pieceStage_ && delta == 0.0)
+            if (pieceStage_ && !proximity)
             {
                 const std::int32_t rp = robotPieces_.pieceOfNode[pair.robot];
                 const std::int32_t ep = environmentPieces_.pieceOfNode[pair.environment];
@@ -163,7 +180,11 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             }
             for (std::uint32_t i = 0; i < rn.triangleCount && !hit; ++i)
             {
-                const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
+                const std::uint32_t rt = robotTree_.triangleOrder()[rn.firstTriangle + i];
+                const PlacedTriangle &a = placed.triangle(rt);
+                const double triangleDelta = slack.at(robotTriangleReach_[rt]);
+                // Exact comparisons on coordinates need no tolerance; proximity adds its slack.
+                const double boundsSlack = proximity ? triangleDelta * (1.0 + 1e-9) + tolerance : 0.0;
                 for (std::uint32_t j = 0; j < en.triangleCount; ++j)
                 {
                     const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
@@ -173,16 +194,16 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                         continue;
                     ++triangleTests;
                     const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
-                    if (delta == 0.0 ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
-                                     : triangleDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2) <=
-                                           delta * (1.0 + 1e-9) + tolerance)
+                    if (!proximity ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
+                                   : triangleDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2) <=
+                                         triangleDelta * (1.0 + 1e-9) + tolerance)
                     {
                         if (!found)
                         {
                             hit = true;
                             break;
                         }
-                        found->push_back({ContactPair::Kind::Triangles, robotTree_.triangleOrder()[rn.firstTriangle + i], et,
+                        found->push_back({ContactPair::Kind::Triangles, rt, et,
                                           triangleContactPoint(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)});
                         if ((hit = found->size() >= limit))
                             break;
@@ -218,7 +239,7 @@ std::vector<ContactPair> VolumeTreeChecker<Volume>::contacts(const RigidTransfor
 {
     std::vector<ContactPair> found;
     if (limit > 0 && worldFromRobot.isFinite())
-        anyPairWithin(worldFromRobot, 0.0, nullptr, &found, limit);
+        anyPairWithin(worldFromRobot, {}, nullptr, &found, limit);
     return found;
 }
 

@@ -4,8 +4,10 @@
 // Along OMPL's interpolation from s1 to s2 (translation linear in the fraction tau, rotation at
 // constant angular speed about the robot origin), no robot point moves farther than
 //   B * |dtau|,   B = |t2 - t1| + r * angle(R1^T R2),
-// where r bounds |p| over robot points. So if at the middle of an interval [a, b] the robot is
-// farther than B (b - a) / 2 from every obstacle, nothing on the interval touches. The validator
+// where r bounds |p| over robot points (and a point p itself moves at most (|t2 - t1| + |p| angle)
+// per unit of tau). So if at the middle of an interval [a, b] every robot part is farther than its
+// own reach times (b - a) / 2 from every obstacle, nothing on the interval touches; the hierarchy
+// checks that per node, with each node's distance from the robot origin. The validator
 // certifies [0, 1] by bisection with that proximity query (an early-exit query, about as cheap as a
 // collision check when clearances are large), splitting only the intervals it cannot certify, in
 // order from tau = 0 so the first contact found is the earliest. When a last valid state is asked

@@ -45,6 +45,8 @@ public:
     /// Counted and timed forms of the checker's queries for a pose, for the motion validator.
     bool poseCollides(const RigidTransform &worldFromRobot) const;
     bool poseWithinDistance(const RigidTransform &worldFromRobot, double delta) const;
+    bool poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                                 double robotRadius) const;
 
     const CollisionChecker &checker() const { return *checker_; }
     bool planar() const { return planar_; }

@@ -84,6 +84,16 @@ public:
         return distance(worldFromRobot, stats) <= delta;
     }
 
+    /// Swept proximity: false proves that no robot point p (robot frame) comes within
+    /// `translationSlack + radialSlack * |p|` of the environment at this pose, which is how far p can
+    /// move during a motion interval (translation plus rotation about the robot origin). The default
+    /// uses the robot's radius for every point; hierarchical checkers use each part's own reach.
+    virtual bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                                     double robotRadius, QueryStats *stats = nullptr) const
+    {
+        return withinDistance(worldFromRobot, translationSlack + radialSlack * robotRadius, stats);
+    }
+
     /// Hierarchies built for this checker (empty for brute force). `withVolumeRatios` also measures
     /// the node/content volume ratios (costly: a convex hull per sampled node).
     virtual std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const

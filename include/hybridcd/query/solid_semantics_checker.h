@@ -34,6 +34,14 @@ public:
     /// 0 when the surfaces touch or one object is inside the other; otherwise the surface distance.
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
+    bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                             double robotRadius, QueryStats *stats = nullptr) const override
+    {
+        if (!worldFromRobot.isFinite())
+            return true;
+        return surface_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, stats) ||
+               contained(worldFromRobot);
+    }
     /// The surface contacts, or else a containment record (witness: the contained vertex).
     std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override

@@ -37,6 +37,9 @@ public:
     bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
+    /// Uses each node's and triangle's own reach from the robot origin instead of the robot radius.
+    bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                             double robotRadius, QueryStats *stats = nullptr) const override;
     std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
     bool exportLevel(int level, std::ostream &obj) const override;
@@ -49,8 +52,17 @@ public:
 
 private:
     /// Collision (delta = 0, exact triangle test) or proximity (delta > 0) with early exit.
-    /// With `found`, every contact is recorded (up to `limit`) instead of stopping at the first.
-    bool anyPairWithin(const RigidTransform &worldFromRobot, double delta, QueryStats *stats,
+    /// How far a robot part at distance r from the robot origin may be from where the pose puts it.
+    struct Slack
+    {
+        double translation = 0.0;
+        double radial = 0.0;
+        double at(double r) const { return translation + radial * r; }
+    };
+
+    /// Collision (zero slack, exact triangle test) or proximity (distance at most the slack) with
+    /// an early exit; with `found`, every contact is recorded (up to `limit`) instead.
+    bool anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryStats *stats,
                        std::vector<ContactPair> *found = nullptr, std::size_t limit = 0) const;
     double toleranceFor(const RigidTransform &worldFromRobot) const;
 
@@ -66,6 +78,8 @@ private:
     double robotRadius_ = 0.0;
     double environmentMagnitude_ = 0.0;
     std::vector<TriangleBounds> environmentTriangleBounds_;  ///< per mesh triangle, for a cheap exact reject
+    std::vector<double> robotNodeReach_;      ///< per robot node: max |p| over its volume (robot frame)
+    std::vector<double> robotTriangleReach_;  ///< per robot triangle: max |corner|
     std::optional<PieceStage> pieceStage_;
     ConvexDecomposition robotPieces_, environmentPieces_;
 };
