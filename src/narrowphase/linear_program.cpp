@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -14,15 +15,13 @@ namespace hcd
 {
 namespace
 {
-template <int K>
-using VecK = Eigen::Matrix<double, K, 1>;
-
 // A constraint a . x <= b of a (sub)problem, with the index of the input constraint (or box
-// bound) it came from, so that the optimum's basis can be reported.
+// bound) it came from, so that the optimum's basis can be reported. Plain arrays: the loops
+// below are the whole cost of the solver, and they index coordinates by run-time pivots.
 template <int K>
 struct Row
 {
-    VecK<K> a;
+    double a[K];
     double b;
     int id;
 };
@@ -30,8 +29,8 @@ struct Row
 template <int K>
 struct Box
 {
-    VecK<K> lo, hi;
-    std::array<int, K> loId, hiId;
+    double lo[K], hi[K];
+    int loId[K], hiId[K];
 };
 
 // A substituted constraint whose coefficients all fall below this (the input rows have unit
@@ -39,86 +38,108 @@ struct Box
 // flat: within the box its left side is below ~1e-13, so it is checked as the constant 0 <= b.
 constexpr double kConstant = 1e-14;
 
-// One scratch list per dimension and thread: the level-K step writes the rows of its (K-1)-D
-// subproblem into scratch<K-1>() while reading its own from scratch<K>(), so no two live
-// subproblems share a list and nothing is allocated once the lists have grown.
-template <int K>
-std::vector<Row<K>> &scratch()
+// One scratch list per dimension, per thread: the level-K step writes the rows of its (K-1)-D
+// subproblem into rows<K-1> while reading its own from rows<K>, so no two live subproblems
+// share a list. The lists only grow (to the largest problem seen), so once warm nothing is
+// allocated; the solver fetches the thread's workspace once per call and passes it down.
+struct Workspace
 {
-    thread_local std::vector<Row<K>> rows;
-    return rows;
+    std::vector<Row<1>> rows1;
+    std::vector<Row<2>> rows2;
+    std::vector<Row<3>> rows3;
+    std::vector<Row<4>> rows4;
+    std::vector<std::pair<double, int>> keys;
+    std::vector<int> counts;
+    std::vector<Vec3> normals;  // intersectConvexPieces: the working-frame unit normals by id
+
+    template <int K>
+    std::vector<Row<K>> &rows()
+    {
+        if constexpr (K == 1)
+            return rows1;
+        else if constexpr (K == 2)
+            return rows2;
+        else if constexpr (K == 3)
+            return rows3;
+        else
+            return rows4;
+    }
+
+    // Room for the subproblems of a D-dimensional problem of n rows: each level below has at most
+    // two rows (the box's) more than the one above.
+    template <int D>
+    void reserveSubproblems(std::size_t n)
+    {
+        if constexpr (D > 2)  // the 2D level solves its 1D subproblems in place
+        {
+            std::vector<Row<D - 1>> &sub = rows<D - 1>();
+            if (sub.size() < n + 2)
+                sub.resize(n + 2);
+            reserveSubproblems<D - 1>(n + 2);
+        }
+    }
+};
+
+Workspace &workspace()
+{
+    thread_local Workspace w;
+    return w;
 }
 
-template <int K>
-VecK<K - 1> drop(const VecK<K> &v, int k)
-{
-    VecK<K - 1> r;
-    for (int j = 0, m = 0; j < K; ++j)
-        if (j != k)
-            r[m++] = v[j];
-    return r;
-}
-
-template <int K>
-VecK<K> lift(const VecK<K - 1> &y, int k, double xk)
-{
-    VecK<K> x;
-    for (int j = 0, m = 0; j < K; ++j)
-        x[j] = j == k ? xk : y[m++];
-    return x;
-}
-
-// The feasible interval of one variable, narrowed one constraint a y <= b at a time; the ends
-// remember which constraint made them, and their coefficient, to judge crossed ends.
+// The feasible interval of one variable, narrowed one constraint a y <= b at a time. Both ends
+// are kept as upper bounds, end_[0] on y and end_[1] on -y, so that either sign of a is the same
+// code without a branch on it: with m = |a|, the constraint bounds s y by b / m where s is the
+// sign of a. Each end remembers the constraint that made it and its weight |a|, to judge crossed
+// ends. (The comparisons b < end m are the exact ones of b < hi a and b < lo a.)
 class Interval
 {
 public:
-    Interval(double lo, double hi, int loId, int hiId) : lo_(lo), hi_(hi), loId_(loId), hiId_(hiId) {}
+    Interval(double lo, double hi, int loId, int hiId)
+    {
+        end_[0] = hi, end_[1] = -lo;
+        id_[0] = hiId, id_[1] = loId;
+        weight_[0] = weight_[1] = 1.0;
+    }
 
     // False when the constraint is (numerically) a constant 0 <= b that fails.
     bool add(double a, double b, int id, double eps)
     {
+        const double m = std::fabs(a);
+        if (!(m > kConstant))
+            return !(b < -eps);
+        const int s = a < 0.0;
         // Compare before dividing: most constraints do not move an end.
-        if (a > kConstant)
-        {
-            if (b < hi_ * a)
-                hi_ = b / a, hiId_ = id, weightHi_ = a;
-        }
-        else if (a < -kConstant)
-        {
-            if (b < lo_ * a)
-                lo_ = b / a, loId_ = id, weightLo_ = -a;
-        }
-        else if (b < -eps)
-            return false;
+        if (b < end_[s] * m)
+            end_[s] = b / m, id_[s] = id, weight_[s] = m;
         return true;
     }
 
     // The end the objective coefficient points to (the upper one when it is zero).
     bool optimum(double c, double eps, double &y, int &id) const
     {
-        if (lo_ > hi_)
+        const double lo = -end_[1], hi = end_[0];
+        if (lo > hi)
         {
             // Crossed ends may still be feasible within the tolerance, which is measured in the
             // constraints' own units: take the point where both violations are equal.
-            y = (weightHi_ * hi_ + weightLo_ * lo_) / (weightHi_ + weightLo_);
-            if (!(weightHi_ * (y - hi_) <= eps))
+            y = (weight_[0] * hi + weight_[1] * lo) / (weight_[0] + weight_[1]);
+            if (!(weight_[0] * (y - hi) <= eps))
                 return false;
         }
         else
-            y = c >= 0.0 ? hi_ : lo_;
-        id = c >= 0.0 ? hiId_ : loId_;
+            y = c >= 0.0 ? hi : lo;
+        id = c >= 0.0 ? id_[0] : id_[1];
         return true;
     }
 
 private:
-    double lo_, hi_, weightLo_ = 1.0, weightHi_ = 1.0;
-    int loId_, hiId_;
+    double end_[2], weight_[2];
+    int id_[2];
 };
 
 // Start of every level: the box corner the objective points to.
 template <int K>
-void boxCorner(const VecK<K> &c, const Box<K> &box, VecK<K> &x, std::array<int, K> &basis)
+void boxCorner(const double *c, const Box<K> &box, double *x, int *basis)
 {
     for (int j = 0; j < K; ++j)
     {
@@ -129,12 +150,33 @@ void boxCorner(const VecK<K> &c, const Box<K> &box, VecK<K> &x, std::array<int, 
 }
 
 template <int K>
-bool seidel(const Row<K> *rows, int n, const VecK<K> &c, const Box<K> &box, double eps, VecK<K> &x,
-            std::array<int, K> &basis);
+double violation(const Row<K> &h, const double *x)
+{
+    double s = h.a[0] * x[0];
+    for (int j = 1; j < K; ++j)
+        s += h.a[j] * x[j];
+    return s - h.b;
+}
+
+// The largest coefficient (the first of equal ones).
+template <int K>
+int pivotOf(const Row<K> &h, double &pivot)
+{
+    int k = 0;
+    pivot = std::fabs(h.a[0]);
+    for (int j = 1; j < K; ++j)
+        if (std::fabs(h.a[j]) > pivot)
+            pivot = std::fabs(h.a[j]), k = j;
+    return k;
+}
+
+template <int K>
+bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps, double *x, int *basis,
+            Workspace &ws);
 
 template <>
-bool seidel<1>(const Row<1> *rows, int n, const VecK<1> &c, const Box<1> &box, double eps, VecK<1> &x,
-               std::array<int, 1> &basis)
+bool seidel<1>(Row<1> *rows, int n, const double *c, const Box<1> &box, double eps, double *x, int *basis,
+               Workspace &)
 {
     Interval interval(box.lo[0], box.hi[0], box.loId[0], box.hiId[0]);
     for (int i = 0; i < n; ++i)
@@ -146,14 +188,14 @@ bool seidel<1>(const Row<1> *rows, int n, const VecK<1> &c, const Box<1> &box, d
 // Two dimensions, with the one-dimensional subproblem done in place (it is where most of the
 // work happens, so its rows are never written out).
 template <>
-bool seidel<2>(const Row<2> *rows, int n, const VecK<2> &c, const Box<2> &box, double eps, VecK<2> &x,
-               std::array<int, 2> &basis)
+bool seidel<2>(Row<2> *rows, int n, const double *c, const Box<2> &box, double eps, double *x, int *basis,
+               Workspace &)
 {
     boxCorner<2>(c, box, x, basis);
     for (int i = 0; i < n; ++i)
     {
         const Row<2> &h = rows[i];
-        if (h.a.dot(x) - h.b <= eps)
+        if (violation<2>(h, x) <= eps)
             continue;
         const int k = std::fabs(h.a[0]) >= std::fabs(h.a[1]) ? 0 : 1, j = 1 - k;
         if (std::fabs(h.a[k]) <= kConstant)
@@ -179,26 +221,24 @@ bool seidel<2>(const Row<2> *rows, int n, const VecK<2> &c, const Box<2> &box, d
             return false;
         x[j] = y;
         x[k] = q + g * y;
-        basis = {h.id, id};
+        basis[0] = h.id, basis[1] = id;
     }
     return true;
 }
 
 template <int K>
-bool seidel(const Row<K> *rows, int n, const VecK<K> &c, const Box<K> &box, double eps, VecK<K> &x,
-            std::array<int, K> &basis)
+bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps, double *x, int *basis,
+            Workspace &ws)
 {
     boxCorner<K>(c, box, x, basis);
-    std::vector<Row<K - 1>> &sub = scratch<K - 1>();
-    if (sub.size() < std::size_t(n) + 2)
-        sub.resize(std::size_t(n) + 2);
+    Row<K - 1> *const out = ws.rows<K - 1>().data();  // room for n + 2 rows (reserveSubproblems)
     for (int i = 0; i < n; ++i)
     {
         const Row<K> &h = rows[i];
-        if (h.a.dot(x) - h.b <= eps)
+        if (violation<K>(h, x) <= eps)
             continue;
-        int k = 0;
-        const double pivot = h.a.cwiseAbs().maxCoeff(&k);
+        double pivot;
+        const int k = pivotOf<K>(h, pivot);
         if (pivot <= kConstant)
         {
             if (h.b < -eps)
@@ -207,43 +247,129 @@ bool seidel(const Row<K> *rows, int n, const VecK<K> &c, const Box<K> &box, doub
         }
         // On the hyperplane, x_k = q + g . y over the other coordinates y. Pivoting on the
         // largest coefficient keeps |g_j| <= 1.
-        const double inverse = 1.0 / h.a[k];
-        const VecK<K - 1> g = -drop<K>(h.a, k) * inverse;
-        const double q = h.b * inverse;
-
         int kept[K - 1];  // the coordinates other than k
         for (int j = 0, m = 0; j < K; ++j)
             if (j != k)
                 kept[m++] = j;
-        Row<K - 1> *out = sub.data();
-        out[0] = {g, box.hi[k] - q, box.hiId[k]};   // x_k <= hi_k
-        out[1] = {-g, q - box.lo[k], box.loId[k]};  // x_k >= lo_k
+        const double inverse = 1.0 / h.a[k];
+        double g[K - 1];
+        for (int m = 0; m < K - 1; ++m)
+            g[m] = -h.a[kept[m]] * inverse;
+        const double q = h.b * inverse;
+
         for (int j = 0; j < i; ++j)
         {
             const Row<K> &r = rows[j];
-            Row<K - 1> &o = out[j + 2];
+            Row<K - 1> &o = out[j];
+            const double ak = r.a[k];
             for (int m = 0; m < K - 1; ++m)
-                o.a[m] = r.a[kept[m]] + r.a[k] * g[m];
-            o.b = r.b - r.a[k] * q;
+                o.a[m] = r.a[kept[m]] + ak * g[m];
+            o.b = r.b - ak * q;
             o.id = r.id;
         }
+        // The box's bounds on x_k go last: they are rarely active, and a row that is not active
+        // at the optimum costs nothing when it comes late (at the front, it was violated by the
+        // starting corner of most subproblems, at the price of a subproblem of its own).
+        Row<K - 1> &upper = out[i], &lower = out[i + 1];
+        for (int m = 0; m < K - 1; ++m)
+            upper.a[m] = g[m], lower.a[m] = -g[m];
+        upper.b = box.hi[k] - q, upper.id = box.hiId[k];  // x_k <= hi_k
+        lower.b = q - box.lo[k], lower.id = box.loId[k];  // x_k >= lo_k
         Box<K - 1> subBox;
-        subBox.lo = drop<K>(box.lo, k);
-        subBox.hi = drop<K>(box.hi, k);
-        for (int j = 0, m = 0; j < K; ++j)
-            if (j != k)
-                subBox.loId[m] = box.loId[j], subBox.hiId[m++] = box.hiId[j];
-        const VecK<K - 1> subObjective = drop<K>(c, k) + c[k] * g;
+        double subObjective[K - 1];
+        for (int m = 0; m < K - 1; ++m)
+        {
+            const int j = kept[m];
+            subBox.lo[m] = box.lo[j], subBox.hi[m] = box.hi[j];
+            subBox.loId[m] = box.loId[j], subBox.hiId[m] = box.hiId[j];
+            subObjective[m] = c[j] + c[k] * g[m];
+        }
 
-        VecK<K - 1> y;
-        std::array<int, K - 1> subBasis;
-        if (!seidel<K - 1>(out, i + 2, subObjective, subBox, eps, y, subBasis))
+        double y[K - 1];
+        int subBasis[K - 1];
+        if (!seidel<K - 1>(out, i + 2, subObjective, subBox, eps, y, subBasis, ws))
             return false;
-        x = lift<K>(y, k, q + g.dot(y));
+        double xk = q;
+        for (int m = 0; m < K - 1; ++m)
+            xk += g[m] * y[m], x[kept[m]] = y[m];
+        x[k] = xk;
         basis[0] = h.id;
-        std::copy(subBasis.begin(), subBasis.end(), basis.begin() + 1);
+        for (int m = 0; m < K - 1; ++m)
+            basis[m + 1] = subBasis[m];
+        // Move to front: the row just violated is likely to be tight at the end, and the
+        // subproblems of later violations take the rows in this order. Rows 0..i are the same
+        // set afterwards, so x is still their optimum. (Three to four times fewer subproblem
+        // rows for pieces of hundreds of faces, neutral for small ones.)
+        if (i > 0)
+        {
+            const Row<K> moved = rows[i];
+            std::memmove(static_cast<void *>(rows + 1), static_cast<const void *>(rows), sizeof(Row<K>) * std::size_t(i));
+            rows[0] = moved;
+        }
     }
     return true;
+}
+
+// Runs Seidel on rows already normalised and ordered (they live in ws.rows<D>()).
+template <int D>
+bool solveRows(Workspace &ws, int n, const double *objective, const double *lower, const double *upper,
+               double tolerance, double *x, int *basis)
+{
+    ws.reserveSubproblems<D>(std::size_t(n));
+    Box<D> box;
+    for (int j = 0; j < D; ++j)
+    {
+        box.lo[j] = lower[j], box.hi[j] = upper[j];
+        box.loId[j] = lpLowerBoundId(j), box.hiId[j] = lpUpperBoundId(j);
+    }
+    return seidel<D>(ws.rows<D>().data(), n, objective, box, tolerance, x, basis, ws);
+}
+
+// Sorts (key, index) pairs: insertion sort for the few dozen rows of a typical problem, which
+// beats std::sort's setup there; the order is the same (pairs are distinct).
+void sortKeys(std::pair<double, int> *keys, int n)
+{
+    if (n > 48)
+    {
+        std::sort(keys, keys + n);
+        return;
+    }
+    for (int i = 1; i < n; ++i)
+    {
+        const std::pair<double, int> key = keys[i];
+        int j = i;
+        for (; j > 0 && key < keys[j - 1]; --j)
+            keys[j] = keys[j - 1];
+        keys[j] = key;
+    }
+}
+
+// Writes rows[0..n) to `sorted` in increasing order of b (the slack at the origin with t = 0)
+// up to buckets: a stable counting sort into n equal buckets between the smallest and largest b.
+// It orders the rows as well as a full sort does for Seidel's purposes (the same number of
+// subproblem rows within a few percent) at a fraction of the cost, and without a branch.
+// `counts` has room for n + 1 entries.
+void orderBySlack(const Row<4> *rows, int n, Row<4> *sorted, std::vector<int> &counts)
+{
+    if (n == 0)
+        return;
+    double lo = rows[0].b, hi = rows[0].b;
+    for (int i = 1; i < n; ++i)
+        lo = std::min(lo, rows[i].b), hi = std::max(hi, rows[i].b);
+    const double scale = hi > lo ? double(n) / (hi - lo) : 0.0;
+    const double last = double(n - 1);
+    int *const count = counts.data();
+    std::fill(count, count + n + 1, 0);
+    const auto bucket = [&](double b) {
+        const double v = (b - lo) * scale;
+        return int(std::min(v >= 0.0 ? v : 0.0, last));  // NaN goes first
+    };
+    for (int i = 0; i < n; ++i)
+        ++count[bucket(rows[i].b) + 1];
+    for (int k = 0; k < n; ++k)
+        count[k + 1] += count[k];
+    for (int i = 0; i < n; ++i)
+        sorted[count[bucket(rows[i].b)]++] = rows[i];
 }
 
 std::uint64_t splitMix64(std::uint64_t &state)
@@ -285,13 +411,26 @@ Frame workingFrame(const ConvexPiece &a, const ConvexPiece &b)
 template <typename Emit>
 void forEachScaledPlane(const ConvexPiece &p, const Frame &f, Emit emit)
 {
+    const double inverseScale = 1.0 / f.scale;
     for (std::size_t i = 0; i < p.normals.size(); ++i)
     {
         const double length = p.normals[i].norm();
         if (!(length > 0.0))
             continue;
-        const Vec3 n = p.normals[i] / length;
-        emit(n, (p.offsets[i] / length - n.dot(f.center)) / f.scale);
+        // Multiplying by the inverse (the normals are unit, so it is one up to rounding) is
+        // several times cheaper than dividing; a length so small that the inverse overflows
+        // divides instead.
+        const double inverse = 1.0 / length;
+        if (inverse <= 1e300)
+        {
+            const Vec3 n = p.normals[i] * inverse;
+            emit(n, (p.offsets[i] * inverse - n.dot(f.center)) * inverseScale);
+        }
+        else
+        {
+            const Vec3 n = p.normals[i] / length;
+            emit(n, (p.offsets[i] / length - n.dot(f.center)) / f.scale);
+        }
     }
 }
 
@@ -391,8 +530,11 @@ LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const E
     LpSolution<D> solution;
     if (!((lower.array() <= upper.array() + tolerance).all()))
         return solution;
-    std::vector<Row<D>> &rows = scratch<D>();
-    rows.clear();
+    Workspace &ws = workspace();
+    std::vector<Row<D>> &rows = ws.rows<D>();
+    if (rows.size() < constraints.size())
+        rows.resize(constraints.size());
+    int n = 0;
     for (std::size_t i = 0; i < constraints.size(); ++i)
     {
         const double length = constraints[i].a.norm();
@@ -402,39 +544,51 @@ LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const E
                 return solution;
             continue;
         }
-        rows.push_back({constraints[i].a / length, constraints[i].b / length, int(i)});
+        Row<D> &r = rows[std::size_t(n++)];
+        for (int j = 0; j < D; ++j)
+            r.a[j] = constraints[i].a[j] / length;
+        r.b = constraints[i].b / length;
+        r.id = int(i);
     }
     if (orderHint)
     {
         // Most of Seidel's work is done when late constraints are violated; taking first the
         // constraints tightest at a point near the optimum makes that rare (five to eight times
-        // fewer subproblem rows on convex pieces). Ties go by index.
-        thread_local std::vector<std::pair<double, int>> keys;
+        // fewer subproblem rows on convex pieces). Ties go by index (here: by position, which
+        // is in increasing index).
+        if (ws.keys.size() < std::size_t(n))
+            ws.keys.resize(std::size_t(n));
+        for (int i = 0; i < n; ++i)
+        {
+            const Row<D> &r = rows[std::size_t(i)];
+            double s = r.b;
+            for (int j = 0; j < D; ++j)
+                s -= r.a[j] * (*orderHint)[j];
+            ws.keys[std::size_t(i)] = {s, i};
+        }
+        sortKeys(ws.keys.data(), n);
         thread_local std::vector<Row<D>> unsorted;
-        keys.clear();
-        for (std::size_t i = 0; i < rows.size(); ++i)
-            keys.emplace_back(rows[i].b - rows[i].a.dot(*orderHint), int(i));
-        std::sort(keys.begin(), keys.end());
-        unsorted.assign(rows.begin(), rows.end());
-        for (std::size_t i = 0; i < rows.size(); ++i)
-            rows[i] = unsorted[std::size_t(keys[i].second)];
+        unsorted.assign(rows.begin(), rows.begin() + n);
+        for (int i = 0; i < n; ++i)
+            rows[std::size_t(i)] = unsorted[std::size_t(ws.keys[std::size_t(i)].second)];
     }
     else
     {
         // Seeded Fisher-Yates shuffle: Seidel's expected bound needs a random order, the tests
         // and the planner need reproducible answers.
         std::uint64_t state = seed;
-        for (std::size_t i = rows.size(); i > 1; --i)
+        for (std::size_t i = std::size_t(n); i > 1; --i)
             std::swap(rows[i - 1], rows[splitMix64(state) % i]);
     }
 
-    Box<D> box;
-    box.lo = lower;
-    box.hi = upper;
-    for (int j = 0; j < D; ++j)
-        box.loId[j] = lpLowerBoundId(j), box.hiId[j] = lpUpperBoundId(j);
-    if (seidel<D>(rows.data(), int(rows.size()), objective, box, tolerance, solution.x, solution.basis))
+    int basis[D];
+    double x[D];
+    if (solveRows<D>(ws, n, objective.data(), lower.data(), upper.data(), tolerance, x, basis))
+    {
         solution.status = LpStatus::Optimal;
+        for (int j = 0; j < D; ++j)
+            solution.x[j] = x[j], solution.basis[std::size_t(j)] = basis[j];
+    }
     return solution;
 }
 
@@ -453,29 +607,49 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
     const double tolerance = pairTolerance(a, b);
     const Frame frame = workingFrame(a, b);
 
-    // Rows in the working frame: (n, 1) . (x', t') <= d', A's first.
-    thread_local std::vector<Halfspace<4>> rows;
-    rows.clear();
-    const auto emit = [&](const Vec3 &n, double d) {
-        Halfspace<4> h;
-        h.a << n, 1.0;
-        h.b = d;
-        rows.push_back(h);
+    // Rows in the working frame: (n, 1) . (x', t') <= d', A's first, each scaled to a unit
+    // normal as solveSmallLp does; ws.normals keeps the unit n of every row by id (for the dual).
+    Workspace &ws = workspace();
+    const std::size_t faces = a.normals.size() + b.normals.size();
+    if (ws.rows4.size() < 2 * faces)
+        ws.rows4.resize(2 * faces);
+    if (ws.normals.size() < faces)
+        ws.normals.resize(faces);
+    if (ws.counts.size() < faces + 1)
+        ws.counts.resize(faces + 1);
+    Row<4> *const staged = ws.rows4.data() + faces;  // the rows by id; sorted into the front
+    int n = 0;
+    const auto emit = [&](const Vec3 &unit, double d) {
+        // (unit, 1) has length sqrt 2 up to rounding.
+        constexpr double kInverseLength = 0.70710678118654752440;
+        Row<4> &r = staged[n];
+        r.a[0] = unit[0] * kInverseLength, r.a[1] = unit[1] * kInverseLength, r.a[2] = unit[2] * kInverseLength;
+        r.a[3] = kInverseLength;
+        r.b = d * kInverseLength;
+        r.id = n;
+        ws.normals[std::size_t(n)] = unit;
+        ++n;
     };
     forEachScaledPlane(a, frame, emit);
-    const int rowsOfA = int(rows.size());
+    const int rowsOfA = n;
     forEachScaledPlane(b, frame, emit);
+    orderBySlack(staged, n, ws.rows4.data(), ws.counts);
 
-    const Eigen::Vector4d objective(0.0, 0.0, 0.0, 1.0);
-    const Eigen::Vector4d lower(-kBox, -kBox, -kBox, kSlackLow), upper(kBox, kBox, kBox, kSlackHigh);
-    // Ordering hint: the working frame's origin (between the centroids) with zero slack.
-    const Eigen::Vector4d hint = Eigen::Vector4d::Zero();
-    const LpSolution<4> lp = solveSmallLp<4>(rows, objective, lower, upper, kLpTolerance, &hint);
+    const double objective[4] = {0.0, 0.0, 0.0, 1.0};
+    const double lower[4] = {-kBox, -kBox, -kBox, kSlackLow}, upper[4] = {kBox, kBox, kBox, kSlackHigh};
+    struct
+    {
+        LpStatus status = LpStatus::Infeasible;
+        double x[4];
+        int basis[4];
+    } lp;
+    if (solveRows<4>(ws, n, objective, lower, upper, kLpTolerance, lp.x, lp.basis))
+        lp.status = LpStatus::Optimal;
 
     IntersectionResult result;
     if (lp.status == LpStatus::Optimal)
     {
-        result.witness = frame.center + frame.scale * lp.x.head<3>();
+        result.witness = frame.center + frame.scale * Vec3(lp.x[0], lp.x[1], lp.x[2]);
         result.depth = -std::max(a.maxViolation(result.witness), b.maxViolation(result.witness));
         if (result.depth >= -kRoundingFraction * tolerance)
         {
@@ -486,16 +660,16 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
         // Dual certificate: sum lambda_j (n_j, 1) = (0, 0, 0, 1) over the basis; the A part of
         // sum lambda_j n_j separates (see the header).
         const bool clearlyApart = result.depth < -tolerance;
-        if (std::all_of(lp.basis.begin(), lp.basis.end(), [](int id) { return id >= 0; }))
+        if (std::all_of(lp.basis, lp.basis + 4, [](int id) { return id >= 0; }))
         {
             Eigen::Matrix4d columns;
             for (int j = 0; j < 4; ++j)
-                columns.col(j) = rows[std::size_t(lp.basis[j])].a;
-            const Eigen::Vector4d lambda = columns.fullPivLu().solve(objective);
+                columns.col(j) << ws.normals[std::size_t(lp.basis[j])], 1.0;
+            const Eigen::Vector4d lambda = columns.fullPivLu().solve(Eigen::Vector4d::UnitW());
             Vec3 direction = Vec3::Zero();
             for (int j = 0; j < 4; ++j)
                 direction +=
-                    (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * rows[std::size_t(lp.basis[j])].a.head<3>();
+                    (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * ws.normals[std::size_t(lp.basis[j])];
             if (lambda.allFinite() && separateAlong(direction, a, b, clearlyApart ? 0.0 : tolerance, result))
             {
                 result.certificate = IntersectionResult::Certificate::LpDual;
