@@ -88,25 +88,11 @@ std::vector<std::pair<Triangle, std::uint32_t>> distinctFaces(const TriangleMesh
 
 bool everyEdgeEven(const std::vector<std::pair<Triangle, std::uint32_t>> &faces)
 {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-    edges.reserve(faces.size() * 3);
+    std::vector<Triangle> sorted;
+    sorted.reserve(faces.size());
     for (const auto &f : faces)
-    {
-        edges.emplace_back(f.first[0], f.first[1]);
-        edges.emplace_back(f.first[1], f.first[2]);
-        edges.emplace_back(f.first[0], f.first[2]);
-    }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; i < edges.size();)
-    {
-        std::size_t j = i;
-        while (j < edges.size() && edges[j] == edges[i])
-            ++j;
-        if ((j - i) % 2 != 0)
-            return false;
-        i = j;
-    }
-    return !edges.empty();
+        sorted.push_back(f.first);
+    return everyEdgeUsedEvenly(sorted);
 }
 
 bool contains(const BoundingBox &box, const Vec3 &p)

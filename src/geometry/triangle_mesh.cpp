@@ -48,9 +48,14 @@ bool isClosed(const TriangleMesh &mesh)
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
 
+    return everyEdgeUsedEvenly(faces);
+}
+
+bool everyEdgeUsedEvenly(const std::vector<Triangle> &sortedFaces)
+{
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-    edges.reserve(faces.size() * 3);
-    for (const Triangle &f : faces)
+    edges.reserve(sortedFaces.size() * 3);
+    for (const Triangle &f : sortedFaces)
     {
         edges.emplace_back(f[0], f[1]);
         edges.emplace_back(f[1], f[2]);
@@ -66,7 +71,7 @@ bool isClosed(const TriangleMesh &mesh)
             return false;
         i = j;
     }
-    return true;
+    return !edges.empty();
 }
 
 std::size_t weldAndDropDegenerate(TriangleMesh &mesh)

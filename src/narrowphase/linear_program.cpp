@@ -50,7 +50,6 @@ struct Workspace
     std::vector<Row<4>> rows4;
     std::vector<std::pair<double, int>> keys;
     std::vector<int> counts;
-    std::vector<Vec3> normals;  // intersectConvexPieces: the working-frame unit normals by id
 
     template <int K>
     std::vector<Row<K>> &rows()
@@ -149,13 +148,23 @@ void boxCorner(const double *c, const Box<K> &box, double *x, int *basis)
     }
 }
 
+// The first row from `from` on that x violates by more than eps (n when none does).
 template <int K>
-double violation(const Row<K> &h, const double *x)
+int firstViolated(const Row<K> *__restrict rows, int from, int n, const double *xIn, double eps)
 {
-    double s = h.a[0] * x[0];
-    for (int j = 1; j < K; ++j)
-        s += h.a[j] * x[j];
-    return s - h.b;
+    double x[K];
+    for (int j = 0; j < K; ++j)
+        x[j] = xIn[j];
+    for (int i = from; i < n; ++i)
+    {
+        const Row<K> &h = rows[i];
+        double v = h.a[0] * x[0];
+        for (int j = 1; j < K; ++j)
+            v += h.a[j] * x[j];
+        if (!(v - h.b <= eps))  // NaN counts as violated
+            return i;
+    }
+    return n;
 }
 
 // The largest coefficient (the first of equal ones).
@@ -187,16 +196,30 @@ bool seidel<1>(Row<1> *rows, int n, const double *c, const Box<1> &box, double e
 
 // Two dimensions, with the one-dimensional subproblem done in place (it is where most of the
 // work happens, so its rows are never written out).
+// The one-dimensional subproblem of the 2D level, on the line x_K = q + g x_J, over rows[0..n).
+template <int K>
+bool narrowOnLine(const Row<2> *__restrict rows, int n, double g, double q, double eps, Interval &interval)
+{
+    constexpr int J = 1 - K;
+    for (int m = 0; m < n; ++m)
+    {
+        const Row<2> &r = rows[m];
+        if (!interval.add(r.a[J] + r.a[K] * g, r.b - r.a[K] * q, r.id, eps))
+            return false;
+    }
+    return true;
+}
+
+// Two dimensions, with the one-dimensional subproblem done in place (it is where most of the
+// work happens, so its rows are never written out).
 template <>
 bool seidel<2>(Row<2> *rows, int n, const double *c, const Box<2> &box, double eps, double *x, int *basis,
                Workspace &)
 {
     boxCorner<2>(c, box, x, basis);
-    for (int i = 0; i < n; ++i)
+    for (int i = firstViolated<2>(rows, 0, n, x, eps); i < n; i = firstViolated<2>(rows, i + 1, n, x, eps))
     {
         const Row<2> &h = rows[i];
-        if (violation<2>(h, x) <= eps)
-            continue;
         const int k = std::fabs(h.a[0]) >= std::fabs(h.a[1]) ? 0 : 1, j = 1 - k;
         if (std::fabs(h.a[k]) <= kConstant)
         {
@@ -209,12 +232,8 @@ bool seidel<2>(Row<2> *rows, int n, const double *c, const Box<2> &box, double e
         Interval interval(box.lo[j], box.hi[j], box.loId[j], box.hiId[j]);
         if (!interval.add(g, box.hi[k] - q, box.hiId[k], eps) || !interval.add(-g, q - box.lo[k], box.loId[k], eps))
             return false;
-        for (int m = 0; m < i; ++m)
-        {
-            const Row<2> &r = rows[m];
-            if (!interval.add(r.a[j] + r.a[k] * g, r.b - r.a[k] * q, r.id, eps))
-                return false;
-        }
+        if (!(k == 0 ? narrowOnLine<0>(rows, i, g, q, eps, interval) : narrowOnLine<1>(rows, i, g, q, eps, interval)))
+            return false;
         double y;
         int id;
         if (!interval.optimum(c[j] + c[k] * g, eps, y, id))
@@ -226,17 +245,54 @@ bool seidel<2>(Row<2> *rows, int n, const double *c, const Box<2> &box, double e
     return true;
 }
 
+// The rows of the subproblem on the hyperplane x_P = q + g . y (y: the coordinates other than
+// P, in order): a . x <= b becomes (a_y + a_P g) . y <= b - a_P q. The pivot is a template
+// argument so that every coordinate is a fixed offset, and the lists cannot alias.
+template <int K, int P>
+void substituteRows(const Row<K> *__restrict rows, int n, const double *g, double q, Row<K - 1> *__restrict out)
+{
+    double gl[K - 1];
+    for (int m = 0; m < K - 1; ++m)
+        gl[m] = g[m];
+    for (int j = 0; j < n; ++j)
+    {
+        const Row<K> &r = rows[j];
+        Row<K - 1> &o = out[j];
+        const double ak = r.a[P];
+        for (int m = 0; m < K - 1; ++m)
+            o.a[m] = r.a[m < P ? m : m + 1] + ak * gl[m];
+        o.b = r.b - ak * q;
+        o.id = r.id;
+    }
+}
+
+template <int K>
+void substituteRows(const Row<K> *rows, int n, int k, const double *g, double q, Row<K - 1> *out)
+{
+    static_assert(K == 3 || K == 4, "the 2D level substitutes in place");
+    switch (k)
+    {
+    case 0:
+        return substituteRows<K, 0>(rows, n, g, q, out);
+    case 1:
+        return substituteRows<K, 1>(rows, n, g, q, out);
+    case 2:
+        return substituteRows<K, 2>(rows, n, g, q, out);
+    default:
+        if constexpr (K == 4)
+            return substituteRows<K, 3>(rows, n, g, q, out);
+    }
+}
+
 template <int K>
 bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps, double *x, int *basis,
             Workspace &ws)
 {
     boxCorner<K>(c, box, x, basis);
     Row<K - 1> *const out = ws.rows<K - 1>().data();  // room for n + 2 rows (reserveSubproblems)
-    for (int i = 0; i < n; ++i)
+    for (int i = firstViolated<K>(rows, 0, n, x, eps); i < n; i = firstViolated<K>(rows, i + 1, n, x, eps))
     {
         const Row<K> &h = rows[i];
-        if (violation<K>(h, x) <= eps)
-            continue;
         double pivot;
         const int k = pivotOf<K>(h, pivot);
         if (pivot <= kConstant)
@@ -257,16 +313,7 @@ bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps,
             g[m] = -h.a[kept[m]] * inverse;
         const double q = h.b * inverse;
 
-        for (int j = 0; j < i; ++j)
-        {
-            const Row<K> &r = rows[j];
-            Row<K - 1> &o = out[j];
-            const double ak = r.a[k];
-            for (int m = 0; m < K - 1; ++m)
-                o.a[m] = r.a[kept[m]] + ak * g[m];
-            o.b = r.b - ak * q;
-            o.id = r.id;
-        }
+        substituteRows<K>(rows, i, k, g, q, out);
         // The box's bounds on x_k go last: they are rarely active, and a row that is not active
         // at the optimum costs nothing when it comes late (at the front, it was violated by the
         // starting corner of most subproblems, at the price of a subproblem of its own).
@@ -348,7 +395,7 @@ void sortKeys(std::pair<double, int> *keys, int n)
 // up to buckets: a stable counting sort into n equal buckets between the smallest and largest b.
 // It orders the rows as well as a full sort does for Seidel's purposes (the same number of
 // subproblem rows within a few percent) at a fraction of the cost, and without a branch.
-// `counts` has room for n + 1 entries.
+// `counts` has room for 2 n + 1 entries.
 void orderBySlack(const Row<4> *rows, int n, Row<4> *sorted, std::vector<int> &counts)
 {
     if (n == 0)
@@ -358,18 +405,20 @@ void orderBySlack(const Row<4> *rows, int n, Row<4> *sorted, std::vector<int> &c
         lo = std::min(lo, rows[i].b), hi = std::max(hi, rows[i].b);
     const double scale = hi > lo ? double(n) / (hi - lo) : 0.0;
     const double last = double(n - 1);
-    int *const count = counts.data();
+    int *const count = counts.data();          // n + 1 entries
+    int *const bucketOf = counts.data() + n + 1;  // n entries
     std::fill(count, count + n + 1, 0);
-    const auto bucket = [&](double b) {
-        const double v = (b - lo) * scale;
-        return int(std::min(v >= 0.0 ? v : 0.0, last));  // NaN goes first
-    };
     for (int i = 0; i < n; ++i)
-        ++count[bucket(rows[i].b) + 1];
+    {
+        const double v = (rows[i].b - lo) * scale;
+        const int bucket = int(std::min(v >= 0.0 ? v : 0.0, last));  // NaN goes first
+        bucketOf[i] = bucket;
+        ++count[bucket + 1];
+    }
     for (int k = 0; k < n; ++k)
         count[k + 1] += count[k];
     for (int i = 0; i < n; ++i)
-        sorted[count[bucket(rows[i].b)]++] = rows[i];
+        sorted[count[bucketOf[i]]++] = rows[i];
 }
 
 std::uint64_t splitMix64(std::uint64_t &state)
@@ -396,14 +445,23 @@ struct Frame
     double scale;
 };
 
-Frame workingFrame(const ConvexPiece &a, const ConvexPiece &b)
+// The working frame and, in the same pass over the vertices, `pairTolerance`.
+Frame workingFrame(const ConvexPiece &a, const ConvexPiece &b, double *tolerance = nullptr)
 {
     Frame f{0.5 * (a.centroid + b.centroid), 0.0};
+    Vec3 extent = Vec3::Zero(), magnitude = Vec3::Zero();
     for (const ConvexPiece *p : {&a, &b})
         for (const Vec3 &v : p->vertices)
-            f.scale = std::max(f.scale, (v - f.center).cwiseAbs().maxCoeff());
+        {
+            extent = extent.cwiseMax((v - f.center).cwiseAbs());
+            magnitude = magnitude.cwiseMax(v.cwiseAbs());
+        }
+    f.scale = extent.maxCoeff();
+    const double largest = magnitude.maxCoeff();  // max(a.magnitude(), b.magnitude())
     if (!(f.scale > 0.0))  // both pieces one and the same point
-        f.scale = std::max(1.0, std::max(a.magnitude(), b.magnitude()));
+        f.scale = std::max(1.0, largest);
+    if (tolerance)
+        *tolerance = kNarrowPhaseRelativeTolerance * largest + 1e-300;
     return f;
 }
 
@@ -604,19 +662,18 @@ HYBRIDCD_INSTANTIATE_SMALL_LP(4)
 
 IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b)
 {
-    const double tolerance = pairTolerance(a, b);
-    const Frame frame = workingFrame(a, b);
+    double tolerance;
+    const Frame frame = workingFrame(a, b, &tolerance);
 
     // Rows in the working frame: (n, 1) . (x', t') <= d', A's first, each scaled to a unit
-    // normal as solveSmallLp does; ws.normals keeps the unit n of every row by id (for the dual).
+    // normal as solveSmallLp does. The rows are staged by id behind the sorted copy the solver
+    // permutes, so that the dual can look up its basis rows.
     Workspace &ws = workspace();
     const std::size_t faces = a.normals.size() + b.normals.size();
     if (ws.rows4.size() < 2 * faces)
         ws.rows4.resize(2 * faces);
-    if (ws.normals.size() < faces)
-        ws.normals.resize(faces);
-    if (ws.counts.size() < faces + 1)
-        ws.counts.resize(faces + 1);
+    if (ws.counts.size() < 2 * faces + 1)
+        ws.counts.resize(2 * faces + 1);
     Row<4> *const staged = ws.rows4.data() + faces;  // the rows by id; sorted into the front
     int n = 0;
     const auto emit = [&](const Vec3 &unit, double d) {
@@ -627,7 +684,6 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
         r.a[3] = kInverseLength;
         r.b = d * kInverseLength;
         r.id = n;
-        ws.normals[std::size_t(n)] = unit;
         ++n;
     };
     forEachScaledPlane(a, frame, emit);
@@ -664,12 +720,16 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
         {
             Eigen::Matrix4d columns;
             for (int j = 0; j < 4; ++j)
-                columns.col(j) << ws.normals[std::size_t(lp.basis[j])], 1.0;
+            {
+                // (n_j, 1) / sqrt 2: a common scale of the columns only scales lambda.
+                const Row<4> &r = staged[lp.basis[j]];
+                columns.col(j) << r.a[0], r.a[1], r.a[2], r.a[3];
+            }
             const Eigen::Vector4d lambda = columns.fullPivLu().solve(Eigen::Vector4d::UnitW());
             Vec3 direction = Vec3::Zero();
             for (int j = 0; j < 4; ++j)
                 direction +=
-                    (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * ws.normals[std::size_t(lp.basis[j])];
+                    (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * columns.col(j).head<3>();
             if (lambda.allFinite() && separateAlong(direction, a, b, clearlyApart ? 0.0 : tolerance, result))
             {
                 result.certificate = IntersectionResult::Certificate::LpDual;

@@ -53,6 +53,10 @@ struct TriangleMesh
 /// even, non-zero number of triangles. Orientation is not required to be consistent.
 bool isClosed(const TriangleMesh &mesh);
 
+/// True when the faces (corner triples, each sorted ascending, no face repeated) use every
+/// undirected edge an even, non-zero number of times: the closedness rule of isClosed().
+bool everyEdgeUsedEvenly(const std::vector<TriangleMesh::Triangle> &sortedFaces);
+
 /// Merges vertices with identical coordinates and drops triangles that become degenerate
 /// (collinear or repeated corners, decided exactly). Returns the number of triangles dropped.
 std::size_t weldAndDropDegenerate(TriangleMesh &mesh);
