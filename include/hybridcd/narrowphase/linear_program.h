@@ -25,11 +25,13 @@
 // constraints seen so far, substituted into that hyperplane. Expected time O(d! n), linear in
 // the number of faces for fixed d, with no setup: for the few dozen faces of a convex piece it
 // beats general-purpose LP codes by orders of magnitude. The order comes from a seeded shuffle,
-// so results are deterministic. The narrow phase instead takes the faces in increasing order of
-// their slack at the point between the two centroids: the faces that end up tight then come
-// first, and late violations, which cost a subproblem over all earlier faces, become rare (5 to
-// 8 times fewer subproblem rows; about 5 us for two 20-face pieces, against 21 us in random
-// order). The two-dimensional level solves its one-dimensional subproblems in place.
+// so results are deterministic. The narrow phase instead takes the faces roughly in increasing
+// order of their slack at the point between the two centroids (a one-pass bucket order): the
+// faces that end up tight then come first, and late violations, which cost a subproblem over all
+// earlier faces, become rare; a violated face also moves to the front of its level (move-to-front,
+// which leaves the optimum unchanged). The box rows of a subproblem go last. Together: about
+// 1.7 us for two 20-face pieces, against 21 us in random order. No allocation per call (a
+// per-thread workspace). The two-dimensional level solves its one-dimensional subproblems in place.
 //
 // Robustness. Coordinates are first translated to the pieces' mid-centroid and scaled to unit
 // size, and each constraint's normal is normalised, so that one absolute tolerance means the
