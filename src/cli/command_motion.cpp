@@ -7,6 +7,7 @@
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/penetration_estimate.h"
 
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
@@ -99,8 +100,14 @@ int runClearance(const std::vector<std::string> &args)
     const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl));
     std::ostringstream out;
     out << std::setprecision(std::numeric_limits<double>::max_digits10);
+    // Free: the exact distance. Colliding: minus the penetration estimate (0 when contained in a
+    // solid, where no triangle pair gives a direction), as the OMPL adapter's clearance() reports.
     for (const PoseRecord &p : poses)
-        out << checker->distance(poseToTransform(p, problem.config.planar)) << '\n';
+    {
+        const RigidTransform pose = poseToTransform(p, problem.config.planar);
+        const double d = checker->distance(pose);
+        out << (d > 0.0 ? d : -estimatePenetration(*checker, problem.scene, pose, 0).depth) << '\n';
+    }
     std::cout << out.str();
     std::cerr << "computed the clearance of " << poses.size() << " poses with '" << checker->name() << "'\n";
     return kSuccess;

@@ -23,7 +23,7 @@ commands:
   check    classify poses: --states FILE [--checker NAME]   (prints 1 free / 0 colliding per pose)
   check-motion  continuous motion checks: --motions FILE [--checker NAME] [--contact-tolerance FRACTION]
            (two poses per line; prints 1 free, or 0 T with T the last free fraction before contact)
-  clearance  distance to the environment per pose: --states FILE [--checker NAME]
+  clearance  distance to the environment per pose (negative: penetration): --states FILE [--checker NAME]
   contacts  intersecting triangles/pieces per pose with a witness point: --states FILE [--checker NAME]
            [--limit N]
   inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]

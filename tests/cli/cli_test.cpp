@@ -129,3 +129,32 @@ TEST(Cli, UnsolvableProblemExitsNonZero)
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("solved: no"), std::string::npos) << r.output;
 }
+
+TEST(Cli, ClearanceAndCheckMotion)
+{
+    const std::string states = test::writeTempFile("clearance.txt", "-26 -10 12 0 0 0 1\n0 20 20 0 0 0 1\n");
+    const CliRun clearance = run("clearance " + problem3d() + " --states " + states + " 2>/dev/null");
+    ASSERT_EQ(clearance.status, 0) << clearance.output;
+    std::istringstream values(clearance.output);
+    double free = 0.0, colliding = 0.0;
+    values >> free >> colliding;
+    EXPECT_GT(free, 1.0);       // the start stands clear of every obstacle
+    EXPECT_LT(colliding, 0.0);  // inside the wall: negative, a penetration
+    // A motion straight through the dividing wall below the window, and one through the window.
+    const std::string motions = test::writeTempFile(
+        "motions.txt", "-26 -10 12 0 0 0 1 26 -10 12 0 0 0 1\n-26 0 25 0 0 0 1 26 0 25 0 0 0 1\n");
+    const CliRun motion = run("check-motion " + problem3d() + " --motions " + motions + " 2>/dev/null");
+    ASSERT_EQ(motion.status, 0) << motion.output;
+    std::istringstream lines(motion.output);
+    int first = -1, second = -1;
+    double t = -1.0;
+    lines >> first >> t >> second;
+    EXPECT_EQ(first, 0);
+    // The robot's front face (its largest x about the centre) reaches the wall face x = -2 when the
+    // centre, starting at -26 and travelling 52, is at -2 - front.
+    const double front = loadProblem(problem3d()).robot.mesh.bounds().max.x();
+    const double contact = (-2.0 - front + 26.0) / 52.0;
+    EXPECT_LE(t, contact);
+    EXPECT_GE(t, contact - 1e-6);
+    EXPECT_EQ(second, 1);
+}
