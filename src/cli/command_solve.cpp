@@ -96,6 +96,10 @@ int runSolve(const std::vector<std::string> &args)
     planning.setup->simplifySolution();
     ompl::geometric::PathGeometric &path = planning.setup->getSolutionPath();
     std::cout << "simplified path length: " << path.length() << '\n' << "path states: " << path.getStateCount() << '\n';
+    // Written densely, as OMPL.app's sample paths are: states at OMPL's validity resolution, so a
+    // reader that interpolates consecutive states another way stays close to the certified motion.
+    path.interpolate();
+    std::cout << "states written (interpolated at OMPL's resolution): " << path.getStateCount() << '\n';
 
     const std::string outPath = cl.text("out", problem.config.name + ".path");
     std::ofstream out(outPath);
