@@ -33,9 +33,10 @@ ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInfo
 {
 }
 
-void ContinuousMotionValidator::setContactTolerance(double fraction)
+void ContinuousMotionValidator::setContactTolerance(double fraction, bool atMostOneSegment)
 {
     contactTolerance_ = std::max(fraction, 1e-12);
+    toleranceIsSegment_ = atMostOneSegment;
 }
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
@@ -157,7 +158,10 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     double certified = 0.0, contactAt = contactKnown ? end : 2.0;
     std::size_t queries = 0;
     bool refused = false;
-    while (!pending.empty() && !(contactAt <= 1.0 && contactAt - certified <= contactTolerance_))
+    // The bracket to reach: the tolerance, or (for planners) one of OMPL's segments if that is
+    // coarser, which is what OMPL's discrete validator offers as a last valid state.
+    const double tolerance = toleranceIsSegment_ ? std::max(contactTolerance_, 1.0 / n) : contactTolerance_;
+    while (!pending.empty() && !(contactAt <= 1.0 && contactAt - certified <= tolerance))
     {
         const Interval iv = pending.back();
         pending.pop_back();
@@ -179,7 +183,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         if (validity_->poseCollides(pose))
         {
             contactAt = mid;
-            if (!refine || contactAt - certified <= contactTolerance_)
+            if (!refine || contactAt - certified <= tolerance)
                 break;
             pending.clear();
             pending.push_back({certified, contactAt});
@@ -188,7 +192,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         // Before any contact is seen, a clearance this small is refused rather than chased. Once a
         // contact is bracketed, splitting goes on: near a slow (grazing) approach the certifiable
         // intervals shrink well below the tolerance before the bracket does.
-        if (contactAt > 1.0 ? needed < minimumClearance_ : iv.b - iv.a < 1e-3 * contactTolerance_)
+        if (contactAt > 1.0 ? needed < minimumClearance_ : iv.b - iv.a < 1e-3 * tolerance)
         {
             refused = true;
             break;

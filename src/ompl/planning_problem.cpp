@@ -111,8 +111,9 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
         auto validator = std::make_shared<ContinuousMotionValidator>(si, planning.validity,
                                                                      problem.robot.mesh.radiusAboutOrigin(), scale);
         // Planners use the last valid state only to keep part of a blocked motion; bracketing the
-        // contact to 1e-3 of the motion keeps that cheap (check-motion and the API use 1e-6).
-        validator->setContactTolerance(1e-3);
+        // contact to 1e-3 of the motion or one validity segment, whichever is coarser, keeps that
+        // cheap (check-motion and the API default to 1e-6).
+        validator->setContactTolerance(1e-3, true);
         si->setMotionValidator(validator);
     }
     else

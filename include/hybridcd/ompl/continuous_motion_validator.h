@@ -57,7 +57,9 @@ public:
 
     /// How closely the first contact is bracketed when a last valid state is asked for, as a
     /// fraction of the motion (default 1e-6): lastValid.second is at most this much before it.
-    void setContactTolerance(double fraction);
+    /// With `atMostOneSegment`, the bracket may also be as wide as one of OMPL's validity segments
+    /// when that is coarser (what OMPL's discrete validator offers planners).
+    void setContactTolerance(double fraction, bool atMostOneSegment = false);
 
     /// Whether s2 must satisfy the state-space bounds (default true, as OMPL's validators do).
     void setApplyBounds(bool apply) { applyBounds_ = apply; }
@@ -75,6 +77,7 @@ private:
     double robotRadius_;
     double minimumClearance_;
     double contactTolerance_ = 1e-6;
+    bool toleranceIsSegment_ = false;
     bool applyBounds_ = true;
     mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0};
 };
