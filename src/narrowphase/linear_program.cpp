@@ -541,18 +541,6 @@ public:
     }
 
 private:
-    static void project(const std::vector<Vec3> &points, const Vec3 &n, double &lo, double &hi)
-    {
-        lo = std::numeric_limits<double>::infinity();
-        hi = -lo;
-        for (const Vec3 &p : points)
-        {
-            const double s = n.dot(p);
-            lo = std::min(lo, s);
-            hi = std::max(hi, s);
-        }
-    }
-
     void consider(const Vec3 &u)
     {
         if (best_ > stopAbove_)
@@ -562,8 +550,8 @@ private:
             return;
         const Vec3 n = u / length;
         double loA, hiA, loB, hiB;
-        project(a_.vertices, n, loA, hiA);
-        project(b_.vertices, n, loB, hiB);
+        projectOnto(a_.vertices, n, loA, hiA);
+        projectOnto(b_.vertices, n, loB, hiB);
         if (loB - hiA >= loA - hiB)
         {
             if (loB - hiA > best_)
@@ -788,5 +776,20 @@ bool convexPiecesIntersectSat(const ConvexPiece &a, const ConvexPiece &b)
 {
     const double tolerance = pairTolerance(a, b);
     return AxisSearch(a, b, tolerance).run(nullptr) <= tolerance;
+}
+void appendWorkingFrameRows(std::vector<Halfspace<4>> &rows, const ConvexPiece &piece, const Vec3 &center, double scale,
+                            const Vec3 &motion)
+{
+    for (std::size_t i = 0; i < piece.normals.size(); ++i)
+    {
+        const double norm = piece.normals[i].norm();
+        if (!(norm > 0.0))
+            continue;
+        const Vec3 n = piece.normals[i] / norm;
+        Halfspace<4> h;
+        h.a << n, n.dot(motion);
+        h.b = (piece.offsets[i] / norm - n.dot(center)) / scale;
+        rows.push_back(h);
+    }
 }
 }  // namespace hcd

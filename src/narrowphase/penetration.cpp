@@ -44,18 +44,6 @@ public:
     }
 
 private:
-    static void project(const std::vector<Vec3> &points, const Vec3 &n, double &lo, double &hi)
-    {
-        lo = std::numeric_limits<double>::infinity();
-        hi = -lo;
-        for (const Vec3 &p : points)
-        {
-            const double s = n.dot(p);
-            lo = std::min(lo, s);
-            hi = std::max(hi, s);
-        }
-    }
-
     // Both orientations of one axis: A pushed along +n needs hiB - loA, along -n needs hiA - loB.
     void consider(const Vec3 &u)
     {
@@ -64,8 +52,8 @@ private:
             return;
         const Vec3 n = u / length;
         double loA, hiA, loB, hiB;
-        project(a_.vertices, n, loA, hiA);
-        project(b_.vertices, n, loB, hiB);
+        projectOnto(a_.vertices, n, loA, hiA);
+        projectOnto(b_.vertices, n, loB, hiB);
         if (hiB - loA < best_)
             best_ = hiB - loA, bestDirection_ = n;
         if (hiA - loB < best_)
@@ -106,21 +94,8 @@ double directionalPenetration(const ConvexPiece &a, const Vec3 &motion, const Co
     // x' in B, x' + s' m in A (s' = s / scale): B's rows (n, 0), A's rows (n, n . m).
     thread_local std::vector<Halfspace<4>> rows;
     rows.clear();
-    const auto emit = [&](const ConvexPiece &piece, bool isA) {
-        for (std::size_t i = 0; i < piece.normals.size(); ++i)
-        {
-            const double norm = piece.normals[i].norm();
-            if (!(norm > 0.0))
-                continue;
-            const Vec3 n = piece.normals[i] / norm;
-            Halfspace<4> h;
-            h.a << n, isA ? n.dot(m) : 0.0;
-            h.b = (piece.offsets[i] / norm - n.dot(center)) / scale;
-            rows.push_back(h);
-        }
-    };
-    emit(b, false);
-    emit(a, true);
+    appendWorkingFrameRows(rows, b, center, scale, Vec3::Zero());
+    appendWorkingFrameRows(rows, a, center, scale, m);
 
     const Eigen::Vector4d objective(0.0, 0.0, 0.0, 1.0);
     const Eigen::Vector4d lower(-kBox, -kBox, -kBox, 0.0), upper(kBox, kBox, kBox, kMaxBack);

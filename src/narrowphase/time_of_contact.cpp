@@ -45,21 +45,8 @@ TimeOfContact translationalTimeOfContact(const ConvexPiece &moving, const Vec3 &
 
     thread_local std::vector<Halfspace<4>> rows;
     rows.clear();
-    const auto emit = [&](const ConvexPiece &piece, bool isMoving) {
-        for (std::size_t i = 0; i < piece.normals.size(); ++i)
-        {
-            const double norm = piece.normals[i].norm();
-            if (!(norm > 0.0))
-                continue;
-            const Vec3 n = piece.normals[i] / norm;
-            Halfspace<4> h;
-            h.a << n, isMoving ? -n.dot(direction) : 0.0;
-            h.b = (piece.offsets[i] / norm - n.dot(center)) / scale;
-            rows.push_back(h);
-        }
-    };
-    emit(fixed, false);
-    emit(moving, true);
+    appendWorkingFrameRows(rows, fixed, center, scale, Vec3::Zero());
+    appendWorkingFrameRows(rows, moving, center, scale, -direction);
 
     // Minimise u, i.e. maximise -u.
     const Eigen::Vector4d objective(0.0, 0.0, 0.0, -1.0);

@@ -11,6 +11,7 @@
 #include "hybridcd/narrowphase/convex_piece.h"
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 namespace hcd
@@ -18,6 +19,19 @@ namespace hcd
 /// Unit edge directions of `piece` with exact and near-exact parallels removed (a box has twelve
 /// edges but three directions): parallel edges give the same cross products.
 std::vector<Vec3> distinctEdgeDirections(const ConvexPiece &piece);
+
+/// The interval [lo, hi] of n . p over `points` (empty: lo = +inf, hi = -inf).
+inline void projectOnto(const std::vector<Vec3> &points, const Vec3 &n, double &lo, double &hi)
+{
+    lo = std::numeric_limits<double>::infinity();
+    hi = -lo;
+    for (const Vec3 &p : points)
+    {
+        const double s = n.dot(p);
+        lo = std::min(lo, s);
+        hi = std::max(hi, s);
+    }
+}
 
 /// Calls `consider(axis)` for every candidate axis of the pair (axes are not normalised and may be
 /// zero: `consider` must skip those).

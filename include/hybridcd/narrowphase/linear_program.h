@@ -75,6 +75,14 @@ struct Halfspace
     double b = 0.0;
 };
 
+/// Appends the face inequalities of `piece` as rows of a 4-variable LP in (x', u), with
+/// x = center + scale * x' (a working frame in which the data has unit size) and the piece
+/// translated by u * motion: n . x' + (n . motion) u <= (d - n . center) / scale, with n normalised
+/// (zero normals skipped). `motion` zero gives a static piece. The time of contact and the
+/// directional penetration are both LPs over such rows.
+void appendWorkingFrameRows(std::vector<Halfspace<4>> &rows, const ConvexPiece &piece, const Vec3 &center, double scale,
+                            const Vec3 &motion);
+
 /// Whether a small LP has a solution (it is never unbounded: the box bounds every variable).
 enum class LpStatus
 {
