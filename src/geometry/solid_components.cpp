@@ -176,6 +176,21 @@ enum class Hit
     Surface,    ///< the ray's origin lies on the closed triangle
 };
 
+// Parity of the crossings along one ray, and whether the ray's answer can be trusted.
+struct RayCount
+{
+    bool odd = false;
+    bool ambiguous = false;
+    bool surface = false;
+
+    void add(Hit hit)
+    {
+        surface = surface || hit == Hit::Surface;
+        ambiguous = ambiguous || hit == Hit::Ambiguous;
+        odd = odd != (hit == Hit::Crossing);
+    }
+};
+
 // The ray from p towards +x against a triangle whose (y, z) box holds p's and whose x extent
 // reaches p. Along the ray, orient3d(p, q, u, v) reduces exactly to orient2d of the (y, z)
 // projections, so the edge tests are planar.
@@ -315,29 +330,19 @@ struct Solid
         // Every triangle that holds p or crosses the +x ray is listed in p's cell with xmax >= p.x,
         // so one pass both detects p on the surface and counts crossings.
         const std::size_t cell = std::size_t(y.cell(p.y())) * std::size_t(z.cells) + std::size_t(z.cell(p.z()));
-        bool odd = false, ambiguous = false;
-        for (std::uint32_t k = cellStart[cell], end = cellStart[cell + 1]; k < end; ++k)
+        RayCount count;
+        for (std::uint32_t k = cellStart[cell], end = cellStart[cell + 1]; k < end && !count.surface; ++k)
         {
             const CellEntry &e = entries[k];
             if (e.xmax < p.x())
                 break;
             if (p.y() < e.ymin || p.y() > e.ymax || p.z() < e.zmin || p.z() > e.zmax)
                 continue;
-            switch (xRayHit(triangles[e.triangle], p))
-            {
-            case Hit::Surface:
-                return true;
-            case Hit::Crossing:
-                odd = !odd;
-                break;
-            case Hit::Ambiguous:
-                ambiguous = true;
-                break;
-            case Hit::None:
-                break;
-            }
+            count.add(xRayHit(triangles[e.triangle], p));
         }
-        return ambiguous ? containsByGenericRays(p) : odd;
+        if (count.surface)
+            return true;
+        return count.ambiguous ? containsByGenericRays(p) : count.odd;
     }
 
     // The rare fallback when the +x ray grazes an edge or runs in a face's plane: rays in generic
@@ -353,27 +358,14 @@ struct Solid
             BoundingBox segment;
             segment.extend(p);
             segment.extend(q);
-            odd = false;
-            bool ambiguous = false;
-            for (std::size_t t = 0; t < triangles.size() && !ambiguous; ++t)
-            {
-                if (!overlaps(segment, triangleBounds[t]))
-                    continue;
-                switch (segmentHit(triangles[t], p, q))
-                {
-                case Hit::Surface:
-                    return true;
-                case Hit::Crossing:
-                    odd = !odd;
-                    break;
-                case Hit::Ambiguous:
-                    ambiguous = true;
-                    break;
-                case Hit::None:
-                    break;
-                }
-            }
-            if (!ambiguous)
+            RayCount count;
+            for (std::size_t t = 0; t < triangles.size() && !count.ambiguous && !count.surface; ++t)
+                if (overlaps(segment, triangleBounds[t]))
+                    count.add(segmentHit(triangles[t], p, q));
+            if (count.surface)
+                return true;
+            odd = count.odd;
+            if (!count.ambiguous)
                 return odd;
         }
         // Unreachable in practice: a point off the surface has only finitely many lines through
