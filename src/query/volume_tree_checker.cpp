@@ -5,6 +5,7 @@
 #include "hybridcd/narrowphase/linear_program.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/query/placed_robot.h"
+#include "hybridcd/query/stamped_slots.h"
 #include "hybridcd/query/traversal_stack.h"
 
 #include <algorithm>
@@ -24,24 +25,14 @@ public:
 
     const ConvexPiece &piece(std::uint32_t node, const ConvexPiece &local)
     {
-        if (s_.pieces.size() <= node)
-        {
-            s_.pieces.resize(node + 1);
-            s_.stamps.resize(node + 1, 0);
-        }
-        if (s_.stamps[node] != query_)
-        {
-            s_.pieces[node] = local.transformed(pose_);
-            s_.stamps[node] = query_;
-        }
-        return s_.pieces[node];
+        s_.pieces.reserve(std::size_t(node) + 1);
+        return s_.pieces.get(node, query_, [&](ConvexPiece &p) { p = local.transformed(pose_); });
     }
 
 private:
     struct Scratch
     {
-        std::vector<ConvexPiece> pieces;
-        std::vector<std::uint64_t> stamps;
+        StampedSlots<ConvexPiece> pieces;
         std::uint64_t query = 0;
     };
     static Scratch &scratch()

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "hybridcd/bvh/volume_tree.h"
+#include "hybridcd/query/stamped_slots.h"
 
 #include <array>
 #include <cstdint>
@@ -28,54 +29,36 @@ public:
     PlacedRobot(const VolumeTree<Volume> &tree, const RigidTransform &worldFromRobot)
         : tree_(tree), pose_(worldFromRobot), s_(scratch()), query_(++s_.query)
     {
-        const std::size_t nodes = tree.nodes().size(), triangles = tree.mesh().triangleCount();
-        if (s_.volumes.size() < nodes)
-        {
-            s_.volumes.resize(nodes);
-            s_.volumeStamps.resize(nodes, 0);
-        }
-        if (s_.triangles.size() < triangles)
-        {
-            s_.triangles.resize(triangles);
-            s_.triangleStamps.resize(triangles, 0);
-        }
+        s_.volumes.reserve(tree.nodes().size());
+        s_.triangles.reserve(tree.mesh().triangleCount());
     }
 
     /// World-frame volume of robot tree node `node`.
     const Volume &volume(std::uint32_t node)
     {
-        if (s_.volumeStamps[node] != query_)
-        {
-            s_.volumes[node] = VolumeTraits<Volume>::transformed(tree_.nodes()[node].volume, pose_);
-            s_.volumeStamps[node] = query_;
-        }
-        return s_.volumes[node];
+        return s_.volumes.get(node, query_, [&](Volume &v) {
+            v = VolumeTraits<Volume>::transformed(tree_.nodes()[node].volume, pose_);
+        });
     }
 
     /// World-frame corners of robot mesh triangle `t`, mapped by RigidTransform::apply (exactly as
     /// every other checker maps them), with their bounds.
     const PlacedTriangle &triangle(std::uint32_t t)
     {
-        PlacedTriangle &p = s_.triangles[t];
-        if (s_.triangleStamps[t] != query_)
-        {
+        return s_.triangles.get(t, query_, [&](PlacedTriangle &p) {
             const TriangleMesh &mesh = tree_.mesh();
             for (int k = 0; k < 3; ++k)
                 p.corners[k] = pose_.apply(mesh.corner(t, k));
             p.min = p.corners[0].cwiseMin(p.corners[1]).cwiseMin(p.corners[2]);
             p.max = p.corners[0].cwiseMax(p.corners[1]).cwiseMax(p.corners[2]);
-            s_.triangleStamps[t] = query_;
-        }
-        return p;
+        });
     }
 
 private:
     struct Scratch
     {
-        std::vector<Volume> volumes;
-        std::vector<std::uint64_t> volumeStamps;
-        std::vector<PlacedTriangle> triangles;
-        std::vector<std::uint64_t> triangleStamps;
+        StampedSlots<Volume> volumes;
+        StampedSlots<PlacedTriangle> triangles;
         std::uint64_t query = 0;
     };
     static Scratch &scratch()
