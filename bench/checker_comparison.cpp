@@ -4,6 +4,8 @@
 // check, the fraction in collision, and disagreements with `bruteforce`, as a Markdown table.
 //
 //   hybridcd_bench_checkers [--states N] [--seed S] [--checker obb,fcl,...] [--no-reference] PROBLEM.cfg...
+#include "bench_support.h"
+
 #include "hybridcd/fcl/fcl_checker.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/query/checker_registry.h"
@@ -20,14 +22,10 @@
 #include <sstream>
 
 using namespace hcd;
+using hcd::bench::median;
 
 namespace
 {
-double median(std::vector<double> v)
-{
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
-}
 
 std::vector<std::string> split(const std::string &s)
 {
@@ -77,18 +75,7 @@ int main(int argc, char **argv)
     for (const std::string &cfg : problems)
     {
         const LoadedProblem problem = loadProblem(cfg);
-        PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene), MotionCheck::Discrete);
-        planning.setup->setup();
-        const auto si = planning.setup->getSpaceInformation();
-        auto sampler = si->allocStateSampler();
-        ompl::base::State *s = si->allocState();
-        std::vector<RigidTransform> poses;
-        for (std::size_t i = 0; i < stateCount; ++i)
-        {
-            sampler->sampleUniform(s);
-            poses.push_back(poseOfState(s, problem.config.planar));
-        }
-        si->freeState(s);
+        const std::vector<RigidTransform> poses = bench::uniformPoses(problem, stateCount);
 
         std::vector<char> truth;
         if (reference)

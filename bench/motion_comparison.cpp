@@ -6,6 +6,8 @@
 // (the continuous validator rejects them; brute force at 20x OMPL's resolution confirms contact).
 //
 //   hybridcd_bench_motions [--motions N] [--seed S] PROBLEM.cfg...
+#include "bench_support.h"
+
 #include "hybridcd/fcl/fcl_checker.h"
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
@@ -20,15 +22,11 @@
 #include <iostream>
 
 using namespace hcd;
+using hcd::bench::median;
 namespace ob = ompl::base;
 
 namespace
 {
-double median(std::vector<double> v)
-{
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
-}
 
 template <class Check>
 std::pair<double, std::vector<char>> timeAll(const std::vector<std::pair<ob::State *, ob::State *>> &motions, const Check &check)

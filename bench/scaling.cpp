@@ -4,6 +4,8 @@
 // for each checker side by side.
 //
 //   hybridcd_bench_scaling [--max-triangles N] [--states N] [--checker obb,fcl] PROBLEM.cfg
+#include "bench_support.h"
+
 #include "hybridcd/fcl/fcl_checker.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/query/checker_registry.h"
@@ -18,6 +20,7 @@
 #include <sstream>
 
 using namespace hcd;
+using hcd::bench::median;
 
 namespace
 {
@@ -45,11 +48,6 @@ TriangleMesh subdivide(const TriangleMesh &in)
     return out;
 }
 
-double median(std::vector<double> v)
-{
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
-}
 }  // namespace
 
 int main(int argc, char **argv)
@@ -78,16 +76,7 @@ int main(int argc, char **argv)
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
     LoadedProblem problem = loadProblem(cfg);
-    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene), MotionCheck::Discrete);
-    planning.setup->setup();
-    auto sampler = planning.setup->getSpaceInformation()->allocStateSampler();
-    ompl::base::State *s = planning.setup->getSpaceInformation()->allocState();
-    std::vector<RigidTransform> poses;
-    for (std::size_t i = 0; i < stateCount; ++i)
-    {
-        sampler->sampleUniform(s);
-        poses.push_back(poseOfState(s, problem.config.planar));
-    }
+    const std::vector<RigidTransform> poses = bench::uniformPoses(problem, stateCount);
 
     std::cout << "| environment triangles | robot triangles | checker | build ms | memory MiB | median ns/check | "
                  "vs fcl |\n|---:|---:|---|---:|---:|---:|---:|\n";
@@ -138,6 +127,5 @@ int main(int argc, char **argv)
         if (robot.triangleCount() * 50 < env.triangleCount())
             robot = subdivide(robot);
     }
-    planning.setup->getSpaceInformation()->freeState(s);
     return 0;
 }

@@ -15,22 +15,9 @@
 
 namespace
 {
-struct Output
-{
-    int status;
-    std::string text;
-};
+using Output = hcd::test::ShellResult;
 
-Output shell(const std::string &command)
-{
-    FILE *pipe = popen((command + " 2>&1").c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
-        out.append(buffer.data(), n);
-    const int raw = pclose(pipe);
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+Output shell(const std::string &command) { return hcd::test::runShell(command); }
 
 bool haveStatisticsScript() { return shell("command -v ompl_benchmark_statistics").status == 0; }
 
@@ -42,7 +29,7 @@ std::string summarize(const std::string &db)
         "rows=c.execute('select p.name, r.run_index from runs r join plannerConfigs p on r.plannerid=p.id').fetchall(); "
         "d={}; [d.setdefault(n,[]).append(int(i)) for n,i in rows]; "
         "print(';'.join('%s|%d|%s'%(n,len(v),','.join(map(str,sorted(v)))) for n,v in sorted(d.items())))";
-    return shell("python3 -c \"" + py + "\" " + db).text;
+    return shell("python3 -c \"" + py + "\" " + db).output;
 }
 
 std::string tempDir()
@@ -60,9 +47,9 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
     const std::string dir = tempDir();
     const Output run = shell(std::string(HYBRIDCD_CLI) + " bench " + hcd::test::sourcePath("problems/corridor_2d.cfg") +
                              " --planner rrtconnect,kpiece --runs 2 --time 1 --out " + dir + "/small.log");
-    ASSERT_EQ(run.status, 0) << run.text;
+    ASSERT_EQ(run.status, 0) << run.output;
     const Output stats = shell("cd " + dir + " && ompl_benchmark_statistics small.log -d small.db");
-    ASSERT_EQ(stats.status, 0) << stats.text;
+    ASSERT_EQ(stats.status, 0) << stats.output;
     EXPECT_EQ(summarize(dir + "/small.db"), "geometric_KPIECE1[obb+ccd]|2|0,1;geometric_RRTConnect[obb+ccd]|2|0,1\n");
 }
 
@@ -77,10 +64,10 @@ TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
     {
         const Output r = shell(base + " --shard " + std::to_string(shard) + "/3 --seed " + std::to_string(shard + 1) +
                                " --out " + dir + "/shard" + std::to_string(shard) + ".log");
-        ASSERT_EQ(r.status, 0) << r.text;
+        ASSERT_EQ(r.status, 0) << r.output;
     }
     const Output whole = shell(base + " --out " + dir + "/whole.log");
-    ASSERT_EQ(whole.status, 0) << whole.text;
+    ASSERT_EQ(whole.status, 0) << whole.output;
     ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics shard0.log shard1.log shard2.log -d shards.db").status, 0);
     ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics whole.log -d whole.db").status, 0);
     const std::string expected =

@@ -17,23 +17,10 @@ using namespace hcd;
 
 namespace
 {
-struct CliRun
-{
-    int status;
-    std::string output;  // stdout and stderr together
-};
+using CliRun = test::ShellResult;
 
-CliRun run(const std::string &args)
-{
-    const std::string command = std::string(HYBRIDCD_CLI) + " " + args + " 2>&1";
-    FILE *pipe = popen(command.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
-        out.append(buffer.data(), n);
-    const int raw = pclose(pipe);
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+// The hybridcd tool with `args` (stdout and stderr together).
+CliRun run(const std::string &args) { return test::runShell(std::string(HYBRIDCD_CLI) + " " + args); }
 
 std::string problem3d() { return test::sourcePath("problems/window_3d.cfg"); }
 }  // namespace

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "support/test_support.h"
 
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -76,6 +79,19 @@ TriangleMesh boxMesh(const Vec3 &lo, const Vec3 &hi)
         m.triangles.push_back({f[0], f[2], f[3]});
     }
     return m;
+}
+
+ShellResult runShell(const std::string &command)
+{
+    FILE *pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe)
+        return {-1, "popen failed for: " + command};
+    std::string out;
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+        out.append(buffer.data(), n);
+    const int raw = pclose(pipe);
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
 }
 
 std::string writeTempFile(const std::string &name, const std::string &text)

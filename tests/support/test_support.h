@@ -37,6 +37,14 @@ std::vector<RigidTransform> randomPoses(const LoadedProblem &problem, std::size_
 /// An axis-aligned closed box [lo, hi] as 12 triangles.
 TriangleMesh boxMesh(const Vec3 &lo, const Vec3 &hi);
 
+/// Exit status and combined stdout + stderr of a shell command (-1 when it did not exit normally).
+struct ShellResult
+{
+    int status;
+    std::string output;
+};
+ShellResult runShell(const std::string &command);
+
 /// Writes `text` to a fresh file in the test's temporary folder and returns its path.
 std::string writeTempFile(const std::string &name, const std::string &text);
 
