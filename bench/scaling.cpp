@@ -80,7 +80,7 @@ int main(int argc, char **argv)
 
     std::cout << "| environment triangles | robot triangles | checker | build ms | memory MiB | median ns/check | "
                  "vs fcl |\n|---:|---:|---|---:|---:|---:|---:|\n";
-    TriangleMesh env = problem.world.mesh, robot = problem.robot.mesh;
+    TriangleMesh env = *problem.world.mesh, robot = *problem.robot.mesh;
     while (env.triangleCount() < 900)
         env = subdivide(env);
     while (env.triangleCount() <= maxTriangles)

@@ -51,16 +51,16 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
     std::cout << role << ": " << (file.empty() ? "(none)" : file) << '\n';
     if (file.empty())
         return;
-    const BoundingBox box = m.mesh.bounds();
-    std::cout << "  triangles: " << m.mesh.triangleCount() << " (file: " << m.sourceTriangles
+    const BoundingBox box = m.mesh->bounds();
+    std::cout << "  triangles: " << m.mesh->triangleCount() << " (file: " << m.sourceTriangles
               << ", degenerate dropped: " << m.droppedDegenerate
               << ", non-triangle primitives skipped: " << m.skippedNonTriangles << ")\n"
-              << "  vertices: " << m.mesh.vertices.size() << " (after welding identical ones)\n"
-              << "  closed (watertight): " << (isClosed(m.mesh) ? "yes" : "no") << '\n'
-              << "  components: " << solidSummary(m.mesh) << '\n'
+              << "  vertices: " << m.mesh->vertices.size() << " (after welding identical ones)\n"
+              << "  closed (watertight): " << (isClosed(*m.mesh) ? "yes" : "no") << '\n'
+              << "  components: " << solidSummary(*m.mesh) << '\n'
               << "  bounding box: min " << formatVec(box.min) << " max " << formatVec(box.max) << '\n'
               << "  centring shift subtracted: " << formatVec(m.centeringShift) << '\n'
-              << "  mesh memory: " << m.mesh.memoryBytes() / 1024.0 << " KiB\n";
+              << "  mesh memory: " << m.mesh->memoryBytes() / 1024.0 << " KiB\n";
 }
 }  // namespace
 

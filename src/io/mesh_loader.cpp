@@ -8,6 +8,7 @@
 #include <assimp/scene.h>
 
 #include <fstream>
+#include <utility>
 
 namespace hcd
 {
@@ -75,7 +76,7 @@ LoadedMesh loadMesh(const std::string &path, MeshRole role)
     }
     out.centeringShift = Vec3(shift.x, shift.y, shift.z);
 
-    TriangleMesh &mesh = out.mesh;
+    TriangleMesh mesh;
     mesh.vertices.reserve(corners.size());
     for (const aiVector3D &c : corners)
     {
@@ -90,6 +91,7 @@ LoadedMesh loadMesh(const std::string &path, MeshRole role)
     out.droppedDegenerate = weldAndDropDegenerate(mesh);
     if (mesh.empty())
         throw InputError(path, 0, "every triangle of the mesh is degenerate (zero area)");
+    out.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
     return out;
 }
 }  // namespace hcd

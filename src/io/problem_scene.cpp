@@ -28,8 +28,8 @@ LoadedProblem loadProblem(const std::string &cfgPath)
             throw InputError(cfgPath, p.config.worldLine, std::string("world mesh: ") + e.what());
         }
     }
-    p.scene.robot = std::make_shared<const TriangleMesh>(p.robot.mesh);
-    p.scene.environment = std::make_shared<const TriangleMesh>(p.world.mesh);
+    p.scene.robot = p.robot.mesh;
+    p.scene.environment = p.world.mesh;
     p.scene.robotName = p.config.robotMesh;
     p.scene.environmentName = p.config.worldMesh;
     return p;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace hcd
 {
@@ -118,39 +119,31 @@ double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh, con
     return worst + spacing;
 }
 
-template <class Volume>
-ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree)
+ConvexDecomposition decomposeClusters(const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangleOrder,
+                                      const std::vector<TriangleCluster> &clusters, std::size_t nodeCount)
 {
     const auto start = std::chrono::steady_clock::now();
     ConvexDecomposition d;
-    d.pieceOfNode.assign(tree.nodes().size(), -1);
+    d.pieceOfNode.assign(nodeCount, -1);
     std::vector<Vec3> points;
     std::vector<std::uint32_t> triangles;
-    for (std::size_t i = 0; i < tree.nodes().size(); ++i)
+    for (const TriangleCluster &cluster : clusters)
     {
-        const auto &node = tree.nodes()[i];
-        if (!node.isLeaf())
-            continue;
         points.clear();
         triangles.clear();
-        for (std::uint32_t k = 0; k < node.triangleCount; ++k)
+        for (std::uint32_t k = 0; k < cluster.count; ++k)
         {
-            const std::uint32_t t = tree.triangleOrder()[node.firstTriangle + k];
+            const std::uint32_t t = triangleOrder[cluster.first + k];
             triangles.push_back(t);
             for (int c = 0; c < 3; ++c)
-                points.push_back(tree.mesh().corner(t, c));
+                points.push_back(mesh.corner(t, c));
         }
-        d.pieceOfNode[i] = std::int32_t(d.pieces.size());
+        d.pieceOfNode[cluster.node] = std::int32_t(d.pieces.size());
         d.pieces.push_back(ConvexPiece::hullOf(points));
-        d.concavity.push_back(measureConcavity(d.pieces.back(), tree.mesh(), triangles));
-        d.approximationBound.push_back(approximationBound(d.pieces.back(), tree.mesh(), triangles));
+        d.concavity.push_back(measureConcavity(d.pieces.back(), mesh, triangles));
+        d.approximationBound.push_back(approximationBound(d.pieces.back(), mesh, triangles));
     }
     d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return d;
 }
-
-template ConvexDecomposition decomposeLeaves<Obb>(const VolumeTree<Obb> &);
-template ConvexDecomposition decomposeLeaves<Ellipsoid>(const VolumeTree<Ellipsoid> &);
-template ConvexDecomposition decomposeLeaves<HybridVolume<false>>(const VolumeTree<HybridVolume<false>> &);
-template ConvexDecomposition decomposeLeaves<HybridVolume<true>>(const VolumeTree<HybridVolume<true>> &);
 }  // namespace hcd

@@ -28,7 +28,7 @@ ob::StateSpacePtr makeStateSpace(const LoadedProblem &problem)
     const int dims = cfg.planar ? 2 : 3;
     ob::RealVectorBounds bounds(dims);
     const std::optional<std::pair<double, double>> volume[3] = {cfg.volumeX, cfg.volumeY, cfg.volumeZ};
-    const BoundingBox envBox = problem.world.mesh.bounds();
+    const BoundingBox envBox = problem.world.mesh->bounds();
     for (int i = 0; i < dims; ++i)
     {
         if (volume[i])
@@ -106,10 +106,10 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
     si->setStateValidityChecker(planning.validity);
     if (motion == MotionCheck::Continuous)
     {
-        const BoundingBox box = problem.world.mesh.bounds();
+        const BoundingBox box = problem.world.mesh->bounds();
         const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
         auto validator = std::make_shared<ContinuousMotionValidator>(si, planning.validity,
-                                                                     problem.robot.mesh.radiusAboutOrigin(), scale);
+                                                                     problem.robot.mesh->radiusAboutOrigin(), scale);
         // Planners use the last valid state only to keep part of a blocked motion; bracketing the
         // contact to 1e-3 of the motion or one validity segment, whichever is coarser, keeps that
         // cheap (check-motion and the API default to 1e-6).

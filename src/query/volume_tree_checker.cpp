@@ -4,6 +4,7 @@
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/narrowphase/linear_program.h"
 #include "hybridcd/geometry/triangle_intersection.h"
+#include "hybridcd/query/leaf_decomposition.h"
 #include "hybridcd/query/placed_robot.h"
 #include "hybridcd/query/stamped_slots.h"
 #include "hybridcd/query/traversal_stack.h"

@@ -77,7 +77,7 @@ TEST(ObbTree, ContainsEveryTriangleOnFlatAndHugeMeshes)
 TEST(ObbTree, ContainsEveryTriangleOnOmplAppMeshes)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha_env-1.5.dae");
-    auto mesh = std::make_shared<TriangleMesh>(loadMesh(cfg, MeshRole::Environment).mesh);
+    auto mesh = std::make_shared<TriangleMesh>(*loadMesh(cfg, MeshRole::Environment).mesh);
     expectContainsSubtree(VolumeTree<Obb>(mesh), obbContains);
 }
 

@@ -139,7 +139,7 @@ TEST(Cli, ClearanceAndCheckMotion)
     EXPECT_EQ(first, 0);
     // The robot's front face (its largest x about the centre) reaches the wall face x = -2 when the
     // centre, starting at -26 and travelling 52, is at -2 - front.
-    const double front = loadProblem(problem3d()).robot.mesh.bounds().max.x();
+    const double front = loadProblem(problem3d()).robot.mesh->bounds().max.x();
     const double contact = (-2.0 - front + 26.0) / 52.0;
     EXPECT_LE(t, contact);
     EXPECT_GE(t, contact - 1e-6);

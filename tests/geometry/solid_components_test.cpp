@@ -455,7 +455,7 @@ bool bruteForceInsideAny(const TriangleMesh &mesh, const std::vector<MeshCompone
 
 void checkOmplappEnvironment(const std::string &path, double expectedFraction)
 {
-    const auto mesh = std::make_shared<TriangleMesh>(loadMesh(path, MeshRole::Environment).mesh);
+    const auto mesh = std::make_shared<TriangleMesh>(*loadMesh(path, MeshRole::Environment).mesh);
     const SolidQuery query(mesh);
     const BoundingBox box = mesh->bounds();
 

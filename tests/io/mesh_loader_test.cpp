@@ -44,9 +44,9 @@ TEST(MeshLoader, ReadsCommonFormats)
     for (const auto &[name, text] : files)
     {
         const LoadedMesh m = loadMesh(test::writeTempFile(name, text), MeshRole::Environment);
-        EXPECT_EQ(m.mesh.triangleCount(), 4u) << name;
-        EXPECT_TRUE(isClosed(m.mesh)) << name;
-        EXPECT_EQ(m.mesh.bounds().max, Vec3(4, 4, 4)) << name;
+        EXPECT_EQ(m.mesh->triangleCount(), 4u) << name;
+        EXPECT_TRUE(isClosed(*m.mesh)) << name;
+        EXPECT_EQ(m.mesh->bounds().max, Vec3(4, 4, 4)) << name;
     }
 }
 
@@ -55,7 +55,7 @@ TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
     const std::string path = test::writeTempFile("robot.obj", kObj);
     const LoadedMesh robot = loadMesh(path, MeshRole::Robot3D);
     EXPECT_EQ(robot.centeringShift, Vec3(1, 1, 1));
-    EXPECT_EQ(robot.mesh.bounds().min, Vec3(-1, -1, -1));
+    EXPECT_EQ(robot.mesh->bounds().min, Vec3(-1, -1, -1));
     const LoadedMesh planar = loadMesh(path, MeshRole::RobotPlanar);
     EXPECT_EQ(planar.centeringShift, Vec3(1, 1, 0));
 }
@@ -64,7 +64,7 @@ TEST(MeshLoader, DropsAndCountsDegenerateTriangles)
 {
     const LoadedMesh m = loadMesh(
         test::writeTempFile("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n"), MeshRole::Environment);
-    EXPECT_EQ(m.mesh.triangleCount(), 1u);
+    EXPECT_EQ(m.mesh->triangleCount(), 1u);
     EXPECT_EQ(m.droppedDegenerate, 1u);
 }
 
@@ -107,7 +107,7 @@ TEST(MeshLoader, MatchesOmplAppGeometryOnCubicles)
     EXPECT_NEAR(robot.centeringShift.z(), 70.57, 0.01);
     // Geometry is Z-up after the importer's and the nodes' transforms.
     HYBRIDCD_REQUIRE_OMPLAPP(mazePath, "2D/Maze_planar_env.dae");
-    const BoundingBox maze = loadMesh(mazePath, MeshRole::Environment).mesh.bounds();
+    const BoundingBox maze = loadMesh(mazePath, MeshRole::Environment).mesh->bounds();
     EXPECT_NEAR(maze.max.x() - maze.min.x(), 110.0, 1e-3);
     EXPECT_NEAR(maze.max.y() - maze.min.y(), 110.0, 1e-3);
     EXPECT_LT(maze.max.z() - maze.min.z(), 20.0);

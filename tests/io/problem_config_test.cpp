@@ -50,8 +50,8 @@ TEST(ProblemConfig, ReadsEveryOmplAppProblemOrNamesTheMissingMesh)
             {
                 const LoadedProblem p = loadProblem(cfgPath);
                 EXPECT_TRUE(meshesExist) << cfgPath;
-                EXPECT_GT(p.robot.mesh.triangleCount(), 0u) << cfgPath;
-                EXPECT_GT(p.world.mesh.triangleCount(), 0u) << cfgPath;
+                EXPECT_GT(p.robot.mesh->triangleCount(), 0u) << cfgPath;
+                EXPECT_GT(p.world.mesh->triangleCount(), 0u) << cfgPath;
                 EXPECT_EQ(cfg.planar, std::string(dim) == "2D") << cfgPath;
                 ++loaded;
             }

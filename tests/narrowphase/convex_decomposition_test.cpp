@@ -7,6 +7,7 @@
 #include "hybridcd/io/mesh_loader.h"
 #include "hybridcd/narrowphase/convex_decomposition.h"
 #include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/leaf_decomposition.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -195,7 +196,7 @@ std::vector<Vec3> fanGridSamples(const ConvexPiece &piece, int perEdge)
 // ---------------------------------------------------------------------------------------------
 // Meshes.
 
-TriangleMesh loadEnvironmentMesh(const std::string &path) { return loadMesh(path, MeshRole::Environment).mesh; }
+TriangleMesh loadEnvironmentMesh(const std::string &path) { return *loadMesh(path, MeshRole::Environment).mesh; }
 
 std::size_t leafCount(const Tree &tree)
 {

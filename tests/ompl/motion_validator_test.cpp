@@ -25,10 +25,10 @@ LoadedProblem makeProblem(TriangleMesh robot, TriangleMesh environment)
     LoadedProblem p;
     p.config.name = "in-memory";
     p.config.volumeX = p.config.volumeY = p.config.volumeZ = std::make_pair(-50.0, 50.0);
-    p.robot.mesh = std::move(robot);
-    p.world.mesh = std::move(environment);
-    p.scene.robot = std::make_shared<const TriangleMesh>(p.robot.mesh);
-    p.scene.environment = std::make_shared<const TriangleMesh>(p.world.mesh);
+    p.robot.mesh = std::make_shared<const TriangleMesh>(std::move(robot));
+    p.world.mesh = std::make_shared<const TriangleMesh>(std::move(environment));
+    p.scene.robot = p.robot.mesh;
+    p.scene.environment = p.world.mesh;
     return p;
 }
 

@@ -103,7 +103,7 @@ TEST(CheckerAgreement, SampleSolutionPathsAreCollisionFree)
             const auto poses = readPoses(entry.path().string(), problem.config.planar);
             for (const std::string &name : checkerNames())
             {
-                if (name == "bruteforce" && problem.world.mesh.triangleCount() > 20000)
+                if (name == "bruteforce" && problem.world.mesh->triangleCount() > 20000)
                     continue;  // the O(pairs) reference is too slow on the largest meshes here
                 const auto checker = makeChecker(name, problem.scene);
                 for (const PoseRecord &p : poses)
@@ -186,7 +186,7 @@ TEST(Contacts, WitnessesLieOnBothPartsAndMatchBruteForce)
     const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
     test::TestRandom rng(8);
     const auto poses = test::randomPoses(problem, 300, rng);
-    const TriangleMesh &robot = problem.robot.mesh, &env = problem.world.mesh;
+    const TriangleMesh &robot = *problem.robot.mesh, &env = *problem.world.mesh;
     std::size_t checkedPoses = 0;
     for (const std::string &name : {"obb", "lp", "hybrid"})
     {

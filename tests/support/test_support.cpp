@@ -43,10 +43,10 @@ Mat3 randomRotation(TestRandom &rng)
 
 std::vector<RigidTransform> randomPoses(const LoadedProblem &problem, std::size_t count, TestRandom &rng)
 {
-    const TriangleMesh &env = problem.world.mesh;
+    const TriangleMesh &env = *problem.world.mesh;
     const BoundingBox box = env.bounds();
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    const double robotRadius = problem.robot.mesh.radiusAboutOrigin();
+    const double robotRadius = problem.robot.mesh->radiusAboutOrigin();
     std::vector<RigidTransform> poses;
     poses.reserve(count);
     for (std::size_t i = 0; i < count; ++i)

@@ -11,6 +11,7 @@
 
 #include "hybridcd/geometry/triangle_mesh.h"
 
+#include <memory>
 #include <string>
 
 namespace hcd
@@ -24,7 +25,8 @@ enum class MeshRole
 
 struct LoadedMesh
 {
-    TriangleMesh mesh;
+    /// Never null (an empty mesh until loaded); immutable, so a CollisionScene can share it.
+    std::shared_ptr<const TriangleMesh> mesh = std::make_shared<const TriangleMesh>();
     Vec3 centeringShift = Vec3::Zero();  ///< what was subtracted from every vertex
     std::size_t sourceTriangles = 0;      ///< three-index faces found in the file
     std::size_t skippedNonTriangles = 0;  ///< points and lines, ignored

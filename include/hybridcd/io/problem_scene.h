@@ -2,12 +2,13 @@
 // A problem file together with its loaded meshes: everything a checker and a planner need.
 #pragma once
 
+#include "hybridcd/geometry/collision_scene.h"
 #include "hybridcd/io/mesh_loader.h"
 #include "hybridcd/io/problem_config.h"
-#include "hybridcd/query/collision_scene.h"
 
 namespace hcd
 {
+/// Each mesh is stored once: `scene.robot` is `robot.mesh` and `scene.environment` is `world.mesh`.
 struct LoadedProblem
 {
     ProblemConfig config;

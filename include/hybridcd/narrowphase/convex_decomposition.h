@@ -7,11 +7,15 @@
 // its leaf by construction. Each piece records its concavity: how far its hull surface stands out
 // from the triangles it covers (0 when the triangles are the hull, e.g. a single triangle or a
 // convex closed cluster), measured on points spread over every hull facet.
+//
+// The leaves come in as plain data (the tree's triangle order and each leaf's run of it), so this
+// layer does not depend on the hierarchies; query/leaf_decomposition.h reads them off a VolumeTree.
 #pragma once
 
-#include "hybridcd/bvh/volume_tree.h"
+#include "hybridcd/geometry/triangle_mesh.h"
 #include "hybridcd/narrowphase/convex_piece.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -29,9 +33,19 @@ struct ConvexDecomposition
     double seconds = 0.0;              ///< time to build the hulls and measure concavity
 };
 
-/// Hull of every leaf of `tree` and its concavity.
-template <class Volume>
-ConvexDecomposition decomposeLeaves(const VolumeTree<Volume> &tree);
+/// One cluster of triangles wrapped into one piece: `count` entries of a triangle order, from
+/// `first`, coming from tree node `node`.
+struct TriangleCluster
+{
+    std::size_t node = 0;
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+};
+
+/// Hull of every cluster (in order) and its concavity. `triangleOrder` holds triangle indices of
+/// `mesh`; `pieceOfNode` gets `nodeCount` entries, -1 for nodes with no cluster.
+ConvexDecomposition decomposeClusters(const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangleOrder,
+                                      const std::vector<TriangleCluster> &clusters, std::size_t nodeCount);
 
 /// A point in both of two intersecting triangles (within 1e-9 relative), from the LP on them as
 /// flat convex pieces: the witness of a triangle contact.

@@ -2,8 +2,8 @@
 // The common interface of every collision checker (brute force, OBB tree, ...).
 #pragma once
 
+#include "hybridcd/geometry/collision_scene.h"
 #include "hybridcd/geometry/rigid_transform.h"
-#include "hybridcd/query/collision_scene.h"
 
 #include <cstdint>
 #include <limits>

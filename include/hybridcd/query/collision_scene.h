@@ -1,21 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// What a checker is built from: one rigid robot mesh and one static environment mesh.
+// CollisionScene now lives in the geometry layer (io builds it without depending on the checkers);
+// this header forwards there for existing includes.
 #pragma once
 
-#include "hybridcd/geometry/triangle_mesh.h"
-
-#include <memory>
-#include <string>
-
-namespace hcd
-{
-/// The robot mesh is in the robot frame (its origin is the point a pose places); the environment
-/// mesh is in the world frame. Both are immutable once shared, so checkers may alias them.
-struct CollisionScene
-{
-    std::shared_ptr<const TriangleMesh> robot;
-    std::shared_ptr<const TriangleMesh> environment;
-    std::string robotName;
-    std::string environmentName;
-};
-}  // namespace hcd
+#include "hybridcd/geometry/collision_scene.h"

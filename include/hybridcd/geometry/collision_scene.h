@@ -1,0 +1,21 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What a checker is built from: one rigid robot mesh and one static environment mesh.
+#pragma once
+
+#include "hybridcd/geometry/triangle_mesh.h"
+
+#include <memory>
+#include <string>
+
+namespace hcd
+{
+/// The robot mesh is in the robot frame (its origin is the point a pose places); the environment
+/// mesh is in the world frame. Both are immutable once shared, so checkers may alias them.
+struct CollisionScene
+{
+    std::shared_ptr<const TriangleMesh> robot;
+    std::shared_ptr<const TriangleMesh> environment;
+    std::string robotName;
+    std::string environmentName;
+};
+}  // namespace hcd
