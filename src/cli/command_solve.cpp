@@ -6,8 +6,8 @@
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_registry.h"
-#include "planners/planner_catalogue.h"
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/Console.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "planners/planner_catalogue.h"
+#include "hybridcd/planners/planner_catalogue.h"
 
 #include <ompl/base/spaces/SE3StateSpace.h>
 

@@ -3,8 +3,8 @@
 #include "support/test_support.h"
 
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_registry.h"
-#include "planners/planner_catalogue.h"
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/RandomNumbers.h>
