@@ -17,6 +17,15 @@ if(TARGET hybridcd_fcl)
   list(APPEND HYBRIDCD_COMPONENTS fcl)
 endif()
 
+# Shared libraries find each other, and the tool finds them, wherever the prefix is.
+if(BUILD_SHARED_LIBS AND NOT IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}" AND NOT IS_ABSOLUTE "${CMAKE_INSTALL_BINDIR}")
+  file(RELATIVE_PATH _hybridcd_bin_to_lib "/prefix/${CMAKE_INSTALL_BINDIR}" "/prefix/${CMAKE_INSTALL_LIBDIR}")
+  set_target_properties(${_hybridcd_targets} PROPERTIES INSTALL_RPATH "$ORIGIN")
+  if(TARGET hybridcd)
+    set_target_properties(hybridcd PROPERTIES INSTALL_RPATH "$ORIGIN/${_hybridcd_bin_to_lib}")
+  endif()
+endif()
+
 install(TARGETS ${_hybridcd_targets} EXPORT hybridcdTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
