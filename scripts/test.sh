@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Installs, builds (with tests) and runs the whole suite with CTest.
+# Installs, builds (with tests) and runs the whole suite with CTest, then the layer and README
+# checks and the consumer test (an installed hybridcd used through find_package and pkg-config).
 # OMPL.app's problems are read from ../shared/omplapp-resources, or $HYBRIDCD_OMPLAPP_RESOURCES;
 # tests that need them skip with a message when they are absent.
 set -euo pipefail
@@ -13,6 +14,12 @@ cmake -S "$root" -B "$root/build-tsan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHYBRI
 cmake --build "$root/build-tsan" -j"$(nproc)" --target validity_checker_test
 (cd "$root/build-tsan" && TSAN_OPTIONS="halt_on_error=1" ctest --output-on-failure -R ValidityChecker --timeout 900)
 
-# ...then the whole suite.
-cd "$root/build"
-ctest --output-on-failure -j"$(nproc)" --timeout 900
+# ...then the whole suite...
+(cd "$root/build" && ctest --output-on-failure -j"$(nproc)" --timeout 900)
+
+# ...the layering of the includes and the README's copy of the library example...
+python3 "$root/scripts/check_layers.py" "$root"
+python3 "$root/scripts/check_readme_files.py" "$root"
+
+# ...and hybridcd as a consumer sees it: installed into a temporary prefix, found by CMake and pkg-config.
+bash "$root/scripts/test_consumer.sh" "$root/problems/window_3d.cfg"
