@@ -79,9 +79,7 @@ TEST(CheckerAgreement, ProjectProblems)
 
 TEST(CheckerAgreement, SampleSolutionPathsAreCollisionFree)
 {
-    const std::string root = test::omplappResources();
-    if (root.empty())
-        GTEST_SKIP() << "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES";
+    HYBRIDCD_REQUIRE_OMPLAPP_ROOT(root);
     int paths = 0;
     for (const char *dim : {"2D", "3D"})
         for (const auto &entry : std::filesystem::directory_iterator(root + "/" + dim))
