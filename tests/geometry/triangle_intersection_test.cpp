@@ -697,7 +697,7 @@ TEST(TriangleIntersection, IntegerGridMatchesExactReference)
     TestRandom rng(77);
     Tally tally{"integer grid [-3, 3]"};
     long referenceConflicts = 0;
-    while (tally.pairs < 40000)
+    while (tally.pairs < hcd::test::cases(40000))
     {
         const Triangle a{{gridPoint(rng, -3, 3), gridPoint(rng, -3, 3), gridPoint(rng, -3, 3)}};
         const Triangle b{{gridPoint(rng, -3, 3), gridPoint(rng, -3, 3), gridPoint(rng, -3, 3)}};
@@ -728,7 +728,7 @@ TEST(TriangleIntersection, ConstructedConfigurationsMatchExactReference)
         for (const Placement &p : where)
             tallies.push_back({construction.name + ", " + p.name});
         long referenceWrong = 0;
-        for (int i = 0; i < 600; ++i)
+        for (int i = 0; i < hcd::test::cases(600); ++i)
         {
             const auto [a, b] = construction.build(rng);
             for (std::size_t k = 0; k < where.size(); ++k)

@@ -67,10 +67,10 @@ CollisionScene sceneOf(TriangleMesh robot, TriangleMesh environment)
 }
 }  // namespace
 
-TEST(CheckerAgreement, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); checkProblem(cfg, 10000); }
-TEST(CheckerAgreement, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); checkProblem(cfg, 10000); }
-TEST(CheckerAgreement, Alpha15) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg"); checkProblem(cfg, 10000); }
-TEST(CheckerAgreement, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); checkProblem(cfg, 10000); }
+TEST(CheckerAgreement, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); checkProblem(cfg, test::cases(10000)); }
+TEST(CheckerAgreement, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); checkProblem(cfg, test::cases(10000)); }
+TEST(CheckerAgreement, Alpha15) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg"); checkProblem(cfg, test::cases(10000)); }
+TEST(CheckerAgreement, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); checkProblem(cfg, test::cases(10000)); }
 TEST(CheckerAgreement, ProjectProblems)
 {
     checkProblem(test::sourcePath("problems/window_3d.cfg"), 3000);

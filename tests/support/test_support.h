@@ -25,6 +25,17 @@ std::uint64_t seed();
 /// another HYBRIDCD_TEST_SEED explores other samples, and with none it is unchanged.
 std::uint64_t seeded(std::uint64_t base);
 
+/// How much fewer random cases the heaviest tests draw in sanitizer builds, where each case costs
+/// 10-50x more (exact arithmetic above all): the same checks on fewer cases keep CI within its time.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr int kSanitizerCaseDivisor = 8;
+#else
+inline constexpr int kSanitizerCaseDivisor = 1;
+#endif
+
+/// `count` random cases, or an eighth of them (at least one) in sanitizer builds.
+constexpr int cases(int count) { return count / kSanitizerCaseDivisor > 0 ? count / kSanitizerCaseDivisor : 1; }
+
 /// True when running in CI ($CI is "true" or "1"): missing OMPL.app resources are then a failure,
 /// since a quarter of the suite would otherwise be skipped without a trace.
 bool inContinuousIntegration();
