@@ -1,25 +1,44 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Installs, builds (with tests) and runs the whole suite with CTest, then the layer and README
-# checks and the consumer test (an installed hybridcd used through find_package and pkg-config).
+# Installs, builds (with tests) and runs the whole suite with CTest:
+#   1. Release build, the whole suite;
+#   2. AddressSanitizer + UndefinedBehaviorSanitizer build, the whole suite;
+#   3. ThreadSanitizer build, the concurrency tests (8 threads on every checker and every query).
+#   4. the layering of the includes, the README's copy of the library example, and hybridcd as a
+#      consumer sees it: installed into a temporary prefix, found by CMake and pkg-config.
+# HYBRIDCD_SANITIZERS=0 skips 2 and 3 (a quick local run; CI always runs them).
 # OMPL.app's problems are read from ../shared/omplapp-resources, or $HYBRIDCD_OMPLAPP_RESOURCES;
-# tests that need them skip with a message when they are absent.
+# tests that need them skip with a message when they are absent, and fail when CI=true.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+jobs=$(nproc)
+step() { echo "== hybridcd test: $*" >&2; }
+
+step "release build and suite"
 bash "$root/scripts/build.sh" -DHYBRIDCD_BUILD_TESTS=ON -DHYBRIDCD_BUILD_BENCH=OFF
+(cd "$root/build" && ctest --output-on-failure -j"$jobs" --timeout 900)
 
-# First the concurrency tests under ThreadSanitizer (checkers are queried from many threads)...
-cmake -S "$root" -B "$root/build-tsan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHYBRIDCD_SANITIZE=thread \
-  -DHYBRIDCD_BUILD_TESTS=ON -DHYBRIDCD_BUILD_BENCH=OFF -DHYBRIDCD_BUILD_CLI=OFF >/dev/null
-cmake --build "$root/build-tsan" -j"$(nproc)" --target validity_checker_test
-(cd "$root/build-tsan" && TSAN_OPTIONS="halt_on_error=1" ctest --output-on-failure -R ValidityChecker --timeout 900)
-
-# ...then the whole suite...
-(cd "$root/build" && ctest --output-on-failure -j"$(nproc)" --timeout 900)
-
-# ...the layering of the includes and the README's copy of the library example...
+step "include layers, README example, installed package"
 python3 "$root/scripts/check_layers.py" "$root"
 python3 "$root/scripts/check_readme_files.py" "$root"
-
-# ...and hybridcd as a consumer sees it: installed into a temporary prefix, found by CMake and pkg-config.
 bash "$root/scripts/test_consumer.sh" "$root/problems/window_3d.cfg"
+
+if [ "${HYBRIDCD_SANITIZERS:-1}" != 0 ]; then
+  # Sanitizer builds keep assertions and use -O1: compile time matters more than speed here.
+  sanitizer_flags=(-DCMAKE_BUILD_TYPE=Sanitize "-DCMAKE_CXX_FLAGS_SANITIZE=-O1 -g1" -DHYBRIDCD_BUILD_BENCH=OFF)
+
+  step "AddressSanitizer + UndefinedBehaviorSanitizer build and suite"
+  cmake -S "$root" -B "$root/build-asan" "${sanitizer_flags[@]}" -DHYBRIDCD_SANITIZE=address,undefined \
+    -DHYBRIDCD_BUILD_TESTS=ON >/dev/null
+  cmake --build "$root/build-asan" -j"$jobs"
+  (cd "$root/build-asan" && ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1" \
+    ctest --output-on-failure -j"$jobs" --timeout 1800)
+
+  step "ThreadSanitizer build and concurrency tests"
+  cmake -S "$root" -B "$root/build-tsan" "${sanitizer_flags[@]}" -DHYBRIDCD_SANITIZE=thread \
+    -DHYBRIDCD_BUILD_TESTS=ON -DHYBRIDCD_BUILD_CLI=OFF >/dev/null
+  cmake --build "$root/build-tsan" -j"$jobs" --target concurrency_test validity_checker_test
+  (cd "$root/build-tsan" && TSAN_OPTIONS="halt_on_error=1" \
+    ctest --output-on-failure -R "Concurrency|ValidityChecker" --timeout 1800)
+fi
+step "all passed"

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 namespace hcd
 {
@@ -82,6 +83,14 @@ bool segmentCrossesTriangle(const Vec3 &p, const Vec3 &q, int sideP, int sideQ, 
     const bool anyNegative = o1 < 0 || o2 < 0 || o3 < 0;
     return !(anyPositive && anyNegative);
 }
+// A point with a NaN or infinite coordinate: it has no position, so nothing can be shown to miss it.
+bool anyNonFinite(std::initializer_list<const Vec3 *> points)
+{
+    for (const Vec3 *p : points)
+        if (!p->allFinite())
+            return true;
+    return false;
+}
 }  // namespace
 
 bool isDegenerateTriangle(const Vec3 &a, const Vec3 &b, const Vec3 &c)
@@ -94,6 +103,8 @@ bool segmentsIntersect(const Vec3 &p, const Vec3 &q, const Vec3 &r, const Vec3 &
 {
     if (orient3d(p, q, r, s) != 0)
         return false;
+    if (anyNonFinite({&p, &q, &r, &s}))
+        return true;  // orient3d gives 0 for non-finite input: such a pair is never called apart
     // Coplanar: some coordinate projection is one-to-one on the common plane (or line), and no
     // projection can separate segments that meet, so they meet iff they meet in all three.
     return segmentsIntersect2d(Projection(0), p, q, r, s) && segmentsIntersect2d(Projection(1), p, q, r, s) &&
@@ -102,6 +113,8 @@ bool segmentsIntersect(const Vec3 &p, const Vec3 &q, const Vec3 &r, const Vec3 &
 
 bool segmentIntersectsTriangle(const Vec3 &p, const Vec3 &q, const Vec3 &a, const Vec3 &b, const Vec3 &c)
 {
+    if (anyNonFinite({&p, &q, &a, &b, &c}))
+        return true;
     if (isDegenerateTriangle(a, b, c))
         return segmentsIntersect(p, q, a, b) || segmentsIntersect(p, q, b, c) || segmentsIntersect(p, q, c, a);
     return segmentCrossesTriangle(p, q, orient3d(a, b, c, p), orient3d(a, b, c, q), a, b, c);
@@ -145,6 +158,9 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
 
     if (allSbZero)
     {
+        // Non-finite input makes every sign zero and lands here or above: report it as touching.
+        if (anyNonFinite({&a0, &a1, &a2, &b0, &b1, &b2}))
+            return true;
         // Coplanar: edges cross, or one triangle holds a vertex of the other.
         const Projection pr = faithfulProjection(a0, a1, a2);
         const Vec3 *ea[3][2] = {{&a0, &a1}, {&a1, &a2}, {&a2, &a0}};

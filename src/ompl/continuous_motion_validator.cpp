@@ -90,10 +90,14 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         return poseOfState(state, planar);
     };
     Report report;
+    // A contact at `at` with [0, lastFree] proven free; it also blocks the motion there when the
+    // bracket is within the tolerance (or when blocking is all that was asked for).
     const auto contact = [&](double lastFree, double at) {
         report.lastFree = lastFree;
         report.contactFound = true;
         report.contactAt = at;
+        report.blocked = true;
+        report.blockedAt = at;
         return report;
     };
     if (validity_->poseCollides(poseOfState(s1, planar)))
@@ -155,7 +159,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         const unsigned k = refine ? segments + 1 - i : i;
         pending.push_back({end * double(k - 1) / segments, end * double(k) / segments});
     }
-    double certified = 0.0, contactAt = contactKnown ? end : 2.0;
+    double certified = 0.0, contactAt = contactKnown ? end : 2.0, nearContactAt = 2.0;
     std::size_t queries = 0;
     bool refused = false;
     // The bracket to reach: the tolerance, or (for planners) one of OMPL's segments if that is
@@ -189,21 +193,51 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
             pending.push_back({certified, contactAt});
             continue;
         }
-        // Before any contact is seen, a clearance this small is refused rather than chased. Once a
-        // contact is bracketed, splitting goes on: near a slow (grazing) approach the certifiable
-        // intervals shrink well below the tolerance before the bracket does.
-        if (contactAt > 1.0 ? needed < minimumClearance_ : iv.b - iv.a < 1e-3 * tolerance)
+        // Neither certified nor colliding: some robot point is within its reach of the environment.
+        // Once that reach is below the smallest clearance ever certified, the middle state is a near
+        // contact, which blocks the motion as a contact does. Verdicts stop there. The first-contact
+        // search stops there only when the near contact lies within the tolerance of the proven-free
+        // prefix (intervals are taken in order, so iv.a == certified) and, once a real contact is
+        // known, only after splitting to 1e-3 of the tolerance: a grazing approach (distance falling
+        // quadratically in time) is where certification stalls, and elsewhere the bracket closes on
+        // the contact itself.
+        const bool nearContact = needed < minimumClearance_;
+        if (!refine && nearContact)
         {
             refused = true;
+            break;
+        }
+        if (refine && nearContact && mid - certified <= tolerance &&
+            (contactAt > 1.0 || iv.b - iv.a < 1e-3 * tolerance))
+        {
+            nearContactAt = mid;
+            break;
+        }
+        if (!(iv.a < mid && mid < iv.b))
+        {
+            refused = true;  // at the resolution of doubles: nothing left to split
             break;
         }
         pending.push_back({mid, iv.b});
         pending.push_back({iv.a, mid});
     }
-    if (contactAt <= 1.0)
-        return contact(certified, contactAt);
     report.lastFree = certified;
-    report.free = !refused && pending.empty();
+    if (contactAt <= 1.0)
+    {
+        report.contactFound = true;
+        report.contactAt = contactAt;
+    }
+    if (nearContactAt <= 1.0)
+    {
+        report.blocked = true;
+        report.blockedAt = nearContactAt;
+    }
+    else if (contactAt <= 1.0 && (!refine || contactAt - certified <= tolerance))
+    {
+        report.blocked = true;
+        report.blockedAt = contactAt;
+    }
+    report.free = !refused && contactAt > 1.0 && nearContactAt > 1.0 && pending.empty();
     return report;
 }
 }  // namespace hcd

@@ -43,7 +43,7 @@ std::string tempDir()
 TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
 {
     if (!haveStatisticsScript())
-        GTEST_SKIP() << "ompl_benchmark_statistics not installed (package ompl-demos)";
+        HYBRIDCD_SKIP_OR_FAIL_IN_CI("ompl_benchmark_statistics not installed (package ompl-demos)");
     const std::string dir = tempDir();
     const Output run = shell(std::string(HYBRIDCD_CLI) + " bench " + hcd::test::sourcePath("problems/corridor_2d.cfg") +
                              " --planner rrtconnect,kpiece --runs 2 --time 1 --out " + dir + "/small.log");
@@ -56,7 +56,7 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
 TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
 {
     if (!haveStatisticsScript())
-        GTEST_SKIP() << "ompl_benchmark_statistics not installed (package ompl-demos)";
+        HYBRIDCD_SKIP_OR_FAIL_IN_CI("ompl_benchmark_statistics not installed (package ompl-demos)");
     const std::string dir = tempDir();
     const std::string base = std::string(HYBRIDCD_CLI) + " bench " + hcd::test::sourcePath("problems/corridor_2d.cfg") +
                              " --planner rrtconnect --checker obb,bruteforce --runs 5 --time 1";

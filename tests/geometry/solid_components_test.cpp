@@ -16,7 +16,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -520,25 +519,6 @@ void checkOmplappEnvironment(const std::string &path, double expectedFraction)
         }
     }
     EXPECT_EQ(mismatches, 0u) << "of " << checked << " points near vertices and edges";
-
-    // Speed of the query the collision checkers would run per pose.
-    std::vector<Vec3> points(1000000);
-    std::mt19937_64 timingRng(5);
-    for (Vec3 &p : points)
-    {
-        const double u = double(timingRng() >> 11) * 0x1.0p-53, v = double(timingRng() >> 11) * 0x1.0p-53,
-                     w = double(timingRng() >> 11) * 0x1.0p-53;
-        p = box.min + (box.max - box.min).cwiseProduct(Vec3(u, v, w));
-    }
-    std::size_t inside = 0;
-    const auto start = std::chrono::steady_clock::now();
-    for (const Vec3 &p : points)
-        inside += query.insideAnySolid(p) ? 1 : 0;
-    const double ns =
-        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / double(points.size());
-    std::cout << path << ": insideAnySolid " << ns << " ns per point (" << double(inside) / double(points.size())
-              << " inside)\n";
-    ::testing::Test::RecordProperty("ns_per_insideAnySolid", std::to_string(ns));
 }
 }  // namespace
 

@@ -33,9 +33,7 @@ const char *kMinimal = "[problem]\nrobot = r.obj\nworld = w.obj\nstart.x = 1\nst
 
 TEST(ProblemConfig, ReadsEveryOmplAppProblemOrNamesTheMissingMesh)
 {
-    const std::string root = test::omplappResources();
-    if (root.empty())
-        GTEST_SKIP() << "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES";
+    HYBRIDCD_REQUIRE_OMPLAPP_ROOT(root);
     int loaded = 0, failed = 0;
     for (const char *dim : {"2D", "3D"})
         for (const auto &entry : std::filesystem::directory_iterator(root + "/" + dim))

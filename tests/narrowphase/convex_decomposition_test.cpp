@@ -603,22 +603,22 @@ TEST(ConvexDecomposition, OpenBoxHasItsMissingFaceAsConcavity)
 TEST(ConvexDecomposition, ApproximateModeIsConservativeCubicles)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
-    checkApproximateMode(cfg, 3000);
+    checkApproximateMode(cfg, test::cases(3000));
 }
 TEST(ConvexDecomposition, ApproximateModeIsConservativeTwistycool)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg");
-    checkApproximateMode(cfg, 3000);
+    checkApproximateMode(cfg, test::cases(3000));
 }
 TEST(ConvexDecomposition, ApproximateModeIsConservativeAlpha15)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg");
-    checkApproximateMode(cfg, 3000);
+    checkApproximateMode(cfg, test::cases(3000));
 }
 TEST(ConvexDecomposition, ApproximateModeIsConservativeMazePlanar)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg");
-    checkApproximateMode(cfg, 3000);
+    checkApproximateMode(cfg, test::cases(3000));
 }
 
 TEST(ConvexDecomposition, ApproximateModeInsideAnOpenHull)

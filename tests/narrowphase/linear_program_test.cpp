@@ -473,7 +473,7 @@ TEST(IntersectConvexPieces, AgreesWithSatOnRandomHulls)
     std::uniform_real_distribution<double> distance(0.0, 1.5);
     Tally all;
     Tally perScale[4];
-    const int pairs = 100000;
+    const int pairs = hcd::test::cases(100000);
     for (int i = 0; i < pairs; ++i)
     {
         // Five in eight pairs at unit scale; one in eight each huge, tiny, and far from the origin.
@@ -519,7 +519,7 @@ TEST(IntersectConvexPieces, RandomPairsSlidToTouching)
     const double targets[] = {1e-6, 1e-11, 0.0, -1e-11, -1e-6};
     Tally tallies[5];
     int unconverged = 0;
-    for (int i = 0; i < 2000; ++i)
+    for (int i = 0; i < hcd::test::cases(2000); ++i)
     {
         const double scale = i % 3 == 0 ? 1.0 : (i % 3 == 1 ? 1e6 : 1e-6);
         const ConvexPiece a =
@@ -631,7 +631,7 @@ TEST(IntersectConvexPieces, NestedPairs)
 {
     TestRandom rng(31);
     Tally nested;
-    for (int i = 0; i < 2000; ++i)
+    for (int i = 0; i < hcd::test::cases(2000); ++i)
     {
         // 60 points on the unit sphere: the hull contains the ball of radius 0.5 with certainty
         // far beyond what this test needs; the small piece fits in radius 0.2 around a point

@@ -67,10 +67,10 @@ CollisionScene sceneOf(TriangleMesh robot, TriangleMesh environment)
 }
 }  // namespace
 
-TEST(CheckerAgreement, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); checkProblem(cfg, 10000); }
-TEST(CheckerAgreement, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); checkProblem(cfg, 10000); }
-TEST(CheckerAgreement, Alpha15) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg"); checkProblem(cfg, 10000); }
-TEST(CheckerAgreement, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); checkProblem(cfg, 10000); }
+TEST(CheckerAgreement, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); checkProblem(cfg, test::cases(10000)); }
+TEST(CheckerAgreement, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); checkProblem(cfg, test::cases(10000)); }
+TEST(CheckerAgreement, Alpha15) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg"); checkProblem(cfg, test::cases(10000)); }
+TEST(CheckerAgreement, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); checkProblem(cfg, test::cases(10000)); }
 TEST(CheckerAgreement, ProjectProblems)
 {
     checkProblem(test::sourcePath("problems/window_3d.cfg"), 3000);
@@ -79,9 +79,7 @@ TEST(CheckerAgreement, ProjectProblems)
 
 TEST(CheckerAgreement, SampleSolutionPathsAreCollisionFree)
 {
-    const std::string root = test::omplappResources();
-    if (root.empty())
-        GTEST_SKIP() << "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES";
+    HYBRIDCD_REQUIRE_OMPLAPP_ROOT(root);
     int paths = 0;
     for (const char *dim : {"2D", "3D"})
         for (const auto &entry : std::filesystem::directory_iterator(root + "/" + dim))

@@ -12,6 +12,39 @@
 
 namespace hcd::test
 {
+std::uint64_t seed()
+{
+    const char *env = std::getenv("HYBRIDCD_TEST_SEED");
+    if (!env || !*env)
+        return 1;
+    char *end = nullptr;
+    const unsigned long long value = std::strtoull(env, &end, 10);
+    if (*end != '\0' || value == 0)
+    {
+        std::fprintf(stderr, "HYBRIDCD_TEST_SEED must be a positive integer, got '%s'\n", env);
+        std::exit(2);
+    }
+    return value;
+}
+
+std::uint64_t seeded(std::uint64_t base)
+{
+    const std::uint64_t s = seed();
+    if (s == 1)
+        return base;
+    // SplitMix64 finaliser: nearby seeds give unrelated streams.
+    std::uint64_t z = base + 0x9E3779B97F4A7C15ull * s;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+bool inContinuousIntegration()
+{
+    const char *ci = std::getenv("CI");
+    return ci && (std::string(ci) == "true" || std::string(ci) == "1");
+}
+
 std::string omplappResources()
 {
     const char *env = std::getenv("HYBRIDCD_OMPLAPP_RESOURCES");

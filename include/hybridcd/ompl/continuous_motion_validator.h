@@ -13,8 +13,10 @@
 // order from tau = 0 so the first contact found is the earliest. When a last valid state is asked
 // for, the search then narrows to the bracket [last certified, contact] until it is shorter than
 // the contact tolerance. A motion is rejected when a middle state collides (contact found) or when
-// an interval shrinks below a clearance too small to certify (1e-7 of the scene size): a motion is never accepted on rounding alone. A pass of collision
-// checks at OMPL's resolution first rejects most invalid motions at the discrete validator's cost.
+// an interval shrinks below a clearance too small to certify (1e-7 of the scene size, a near
+// contact): a motion is never accepted on rounding alone. When the first contact is asked for, the
+// bracket closes on the first contact or near contact. A pass of collision checks at OMPL's
+// resolution first rejects most invalid motions at the discrete validator's cost.
 #pragma once
 
 #include "hybridcd/ompl/state_validity_checker.h"
@@ -37,22 +39,30 @@ public:
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const override;
 
     /// On failure, lastValid.first (if not null) receives a collision-free state on the motion and
-    /// lastValid.second its fraction in [0, 1), before the first contact.
+    /// lastValid.second its fraction in [0, 1): [0, lastValid.second] is proven free, and the motion
+    /// is blocked (a contact or a near contact, see Report) within the contact tolerance after it.
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
 
-    /// What a detailed check found: `free`; otherwise [0, lastFree] is proven collision-free and,
-    /// when `contactFound`, the robot touches the environment at `contactAt` (lastFree < contactAt
-    /// <= lastFree + contact tolerance). Without a contact the motion was refused as too close to call.
+    /// What a detailed check found. When not `free`, [0, lastFree] is proven collision-free.
+    /// `blocked`: the motion is blocked at `blockedAt`, with lastFree < blockedAt <= lastFree +
+    /// contact tolerance: there the robot touches the environment, or is not proven farther from it
+    /// than the smallest clearance ever certified (1e-7 of the scene size), a near contact that is
+    /// never accepted either. `contactFound`: the robot touches the environment at `contactAt`
+    /// (>= blockedAt). A refused motion (too close to call, or the query budget spent) may have
+    /// neither; the bracket promise holds whenever `blocked` is set, which a first-contact search
+    /// always sets unless its budget of 5,000 queries runs out.
     struct Report
     {
         bool free = false;
         double lastFree = 0.0;
+        bool blocked = false;
+        double blockedAt = 1.0;
         bool contactFound = false;
         double contactAt = 1.0;
     };
 
-    /// The full check, with the first contact bracketed to the contact tolerance.
+    /// The full check, with the first blocking point bracketed to the contact tolerance.
     Report checkMotionDetailed(const ompl::base::State *s1, const ompl::base::State *s2) const;
 
     /// How closely the first contact is bracketed when a last valid state is asked for, as a
@@ -63,6 +73,10 @@ public:
 
     /// Whether s2 must satisfy the state-space bounds (default true, as OMPL's validators do).
     void setApplyBounds(bool apply) { applyBounds_ = apply; }
+
+    /// The smallest clearance the validator certifies (1e-7 of the scene size): a robot not proven
+    /// farther than this from the environment is a near contact.
+    double minimumClearance() const { return minimumClearance_; }
 
     std::uint64_t validMotions() const { return validCount_.load(); }
     std::uint64_t invalidMotions() const { return invalidCount_.load(); }
