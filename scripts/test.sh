@@ -31,7 +31,8 @@ if [ "${HYBRIDCD_SANITIZERS:-1}" != 0 ]; then
   cmake -S "$root" -B "$root/build-asan" "${sanitizer_flags[@]}" -DHYBRIDCD_SANITIZE=address,undefined \
     -DHYBRIDCD_BUILD_TESTS=ON >/dev/null
   cmake --build "$root/build-asan" -j"$jobs"
-  (cd "$root/build-asan" && ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1" \
+  (cd "$root/build-asan" && ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" \
+    LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp" UBSAN_OPTIONS="print_stacktrace=1" \
     ctest --output-on-failure -j"$jobs" --timeout 1800)
 
   step "ThreadSanitizer build and concurrency tests"
