@@ -31,7 +31,7 @@ void insideAnySolid(benchmark::State &state, const std::string &relative)
         state.SkipWithError(("missing " + path + "; set HYBRIDCD_OMPLAPP_RESOURCES").c_str());
         return;
     }
-    const auto mesh = std::make_shared<TriangleMesh>(loadMesh(path, MeshRole::Environment).mesh);
+    const std::shared_ptr<const TriangleMesh> mesh = loadMesh(path, MeshRole::Environment).mesh;
     const SolidQuery query(mesh);
     const BoundingBox box = mesh->bounds();
     std::mt19937_64 rng(5);
