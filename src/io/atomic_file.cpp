@@ -61,7 +61,26 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path))
 {
     if (const std::string why = whyNotWritable(path_); !why.empty())
         throw InputError(path_, 0, "cannot write: " + why);
-    temporary_ = createTemporaryBeside(path_);
+    std::error_code ec;
+    if (fs::exists(path_, ec) && !fs::is_regular_file(path_, ec))
+    {
+        // A device or pipe such as /dev/null or /dev/stdout: renaming over it would replace the
+        // device itself, so it is written directly (a stream has no half-written state to avoid).
+        out_.open(path_, std::ios::binary);
+        if (!out_)
+            throw InputError(path_, 0, "cannot write");
+        return;
+    }
+    // Through a symbolic link, the file it points to is replaced, not the link.
+    target_ = path_;
+    if (fs::is_symlink(path_, ec))
+    {
+        std::error_code linkError;
+        target_ = fs::canonical(path_, linkError).string();
+        if (linkError)
+            throw InputError(path_, 0, "cannot follow the symbolic link: " + linkError.message());
+    }
+    temporary_ = createTemporaryBeside(target_);
     if (temporary_.empty())
         throw InputError(path_, 0, std::string("cannot write: ") + std::strerror(errno));
     out_.open(temporary_, std::ios::binary | std::ios::trunc);
@@ -74,7 +93,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path))
 
 AtomicFile::~AtomicFile()
 {
-    if (!committed_)
+    if (!committed_ && !temporary_.empty())
     {
         out_.close();
         std::remove(temporary_.c_str());
@@ -86,9 +105,16 @@ void AtomicFile::commit()
     out_.flush();
     const bool written = bool(out_);
     out_.close();
+    if (temporary_.empty())  // written directly (a device or pipe)
+    {
+        committed_ = true;
+        if (!written)
+            throw InputError(path_, 0, "writing failed");
+        return;
+    }
     if (!written || out_.fail())
         throw InputError(path_, 0, "writing failed (disk full?); the file was left unchanged");
-    if (std::rename(temporary_.c_str(), path_.c_str()) != 0)
+    if (std::rename(temporary_.c_str(), target_.c_str()) != 0)
         throw InputError(path_, 0, std::string("cannot replace the file: ") + std::strerror(errno));
     committed_ = true;
 }
@@ -104,7 +130,18 @@ void checkOutputPath(const std::string &path, const std::string &option, const s
     for (const std::string &input : inputs)
         if (!input.empty() && fs::exists(path, ec) && fs::equivalent(path, input, ec))
             throw InputError(path, 0, where + "names an input of this run (" + input + "); refusing to overwrite it");
-    const std::string probe = createTemporaryBeside(path);
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    {
+        // A device or pipe is written in place (see AtomicFile); it only needs write permission.
+        if (::access(path.c_str(), W_OK) != 0)
+            throw InputError(path, 0, where + "cannot be written: " + std::strerror(errno));
+        return;
+    }
+    std::error_code linkError;
+    const fs::path target = fs::is_symlink(path, ec) ? fs::canonical(path, linkError) : fs::path(path);
+    if (linkError)
+        throw InputError(path, 0, where + "is a symbolic link that cannot be followed: " + linkError.message());
+    const std::string probe = createTemporaryBeside(target.string());
     if (probe.empty())
         throw InputError(path, 0, where + "cannot be written: " + std::strerror(errno));
     std::remove(probe.c_str());

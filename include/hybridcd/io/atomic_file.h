@@ -11,7 +11,9 @@ namespace hcd
 /** \brief Writes FILE by way of a temporary file in the same folder (".FILE.tmp.XXXXXX") that is
     renamed over FILE by commit(). rename() within one file system is atomic, so readers see the
     old file or the complete new one, never a partial write. Without commit() (an error or an
-    exception part way) the destructor removes the temporary file and FILE is left untouched. */
+    exception part way) the destructor removes the temporary file and FILE is left untouched.
+    A symbolic link is followed (the file it names is replaced); an existing device or pipe
+    (/dev/null, /dev/stdout) is written directly, since renaming over it would replace the device. */
 class AtomicFile
 {
 public:
@@ -31,7 +33,8 @@ public:
 
 private:
     std::string path_;
-    std::string temporary_;
+    std::string target_;     ///< path_, or the file a symbolic link path_ names
+    std::string temporary_;  ///< empty when writing a device or pipe directly
     std::ofstream out_;
     bool committed_ = false;
 };
