@@ -85,18 +85,33 @@ bool isKnownBenchmarkKey(const std::string &key)
     return known.count(key) > 0;
 }
 
-// Text files hold no control characters other than tab and carriage return; anything else means
-// a binary file was given (an image, a mesh, an archive), which deserves a clear message rather
-// than "expected 'key = value'" followed by garbage.
+// Length of the UTF-8 sequence starting at line[i], or 0 when it is not valid UTF-8.
+std::size_t utf8Length(const std::string &line, std::size_t i)
+{
+    const unsigned char c = static_cast<unsigned char>(line[i]);
+    const std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+    if (n == 0 || i + n > line.size())
+        return 0;
+    for (std::size_t k = 1; k < n; ++k)
+        if ((static_cast<unsigned char>(line[i + k]) >> 6) != 0x2)
+            return 0;
+    return n;
+}
+
+// Text holds no control characters other than tab and carriage return, and is valid UTF-8
+// (which includes ASCII); anything else means a binary file was given (an image, a mesh, an
+// archive), which deserves a clear message rather than "expected 'key = value'" and garbage.
 void rejectBinary(const std::string &line, const std::string &path, int lineNo)
 {
-    for (std::size_t i = 0; i < line.size(); ++i)
+    for (std::size_t i = 0; i < line.size();)
     {
         const unsigned char c = static_cast<unsigned char>(line[i]);
-        if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
+        const std::size_t n = utf8Length(line, i);
+        if (n == 0 || (c < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
             throw InputError(path, lineNo,
                              "binary data (byte " + std::to_string(int(c)) + " in column " + std::to_string(i + 1) +
                                  "); a problem file is an OMPL.app .cfg text file");
+        i += n;
     }
 }
 }  // namespace
