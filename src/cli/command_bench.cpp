@@ -3,7 +3,9 @@
 // as an OMPL benchmark log (readable by ompl_benchmark_statistics), optionally one shard of many.
 #include "command_line.h"
 #include "commands.h"
+#include "problem_checks.h"
 
+#include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/planners/planner_catalogue.h"
@@ -60,23 +62,29 @@ struct CheckerSlot
 
 int runBench(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"checker", "runs", "time", "memory", "shard", "out", "planner", "motion", "seed"}),
+    const CommandLine cl(args, withCommonOptions({"checker", "runs", "time", "memory", "shard", "out", "planner", "motion", "seed"}),
                           {"surface-only"});
     if (cl.has("seed"))
-        ompl::RNG::setSeed(std::uint_fast32_t(cl.integer("seed", 0)));
-    const LoadedProblem problem = loadProblem(cl.problem());
-    const ProblemConfig &cfg = problem.config;
+        ompl::RNG::setSeed(seedOf(cl));
     const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));
     const auto [shardIndex, shardCount] = parseShard(cl.text("shard", "0/1"));
+    const CheckerOptions checkerOptions = checkerOptionsOf(cl);
+    const LoadedProblem problem = loadProblemFor(cl);
+    const ProblemConfig &cfg = problem.config;
 
-    const long long totalRuns = cl.integer("runs", cfg.benchmark.runCount);
-    if (totalRuns < 1)
-        throw UsageError("--runs needs a positive number");
+    const long long totalRuns = cl.positiveInteger("runs", cfg.benchmark.runCount);
     // Shard I of N does the runs whose index is I modulo N, so shards never overlap and together
     // make exactly the whole benchmark.
     const unsigned shardRuns = unsigned((totalRuns - shardIndex + shardCount - 1) / shardCount);
-    const double timeLimit = cl.number("time", cfg.benchmark.timeLimit);
-    const double memoryLimit = cl.number("memory", cfg.benchmark.memoryLimit);
+    const double timeLimit = cl.positiveNumber("time", cfg.benchmark.timeLimit);
+    const double memoryLimit = cl.positiveNumber("memory", cfg.benchmark.memoryLimit);
+    if (shardRuns == 0)
+        throw UsageError("shard " + std::to_string(shardIndex) + "/" + std::to_string(shardCount) + " has no runs of " +
+                         std::to_string(totalRuns));
+    // A benchmark may run for hours: an unwritable log or an impossible start must fail now.
+    const std::string out = cl.text("out", cfg.name + (shardCount > 1 ? ".shard" + std::to_string(shardIndex) : "") + ".log");
+    checkOutputPath(out, cl.has("out") ? "--out" : "the default output", inputFilesOf(problem));
+    requireStartAndGoalInVolume(cfg);
 
     std::vector<PlannerRequest> requests;
     if (cl.has("planner"))
@@ -89,11 +97,12 @@ int runBench(const std::vector<std::string> &args)
 
     std::vector<CheckerSlot> slots;
     for (const std::string &name : splitList(cl.text("checker", "obb")))
-        slots.push_back({name, makeChecker(name, problem.scene, checkerOptionsOf(cl)), nullptr});
+        slots.push_back({name, makeChecker(name, problem.scene, checkerOptions), nullptr});
     if (slots.empty())
         throw UsageError("--checker needs at least one checker name");
 
     PlanningProblem planning = makePlanningProblem(problem, slots.front().checker, motion);
+    requireCollisionFreeStartAndGoal(problem, planning);
     for (CheckerSlot &slot : slots)
         slot.validity = installChecker(planning, problem, slot.checker, motion);
 
@@ -137,16 +146,14 @@ int runBench(const std::vector<std::string> &args)
                   << "/" << shardRuns << "   " << std::flush;
     });
 
-    if (shardRuns == 0)
-        throw UsageError("shard " + std::to_string(shardIndex) + "/" + std::to_string(shardCount) + " has no runs of " +
-                         std::to_string(totalRuns));
     ompl::tools::Benchmark::Request request(timeLimit, memoryLimit, shardRuns, 0.05, false, false, true);
     benchmark.benchmark(request);
     std::cerr << '\n';
 
-    const std::string out = cl.text("out", cfg.name + (shardCount > 1 ? ".shard" + std::to_string(shardIndex) : "") + ".log");
-    if (!benchmark.saveResultsToFile(out.c_str()))
+    AtomicFile log(out);
+    if (!benchmark.saveResultsToStream(log.stream()))
         throw InputError(out, 0, "cannot write the benchmark log");
+    log.commit();
     std::cout << "benchmark log written to: " << out << " (" << slotOf.size() << " planner/checker pairs, " << shardRuns
               << " runs each)\n";
     return kSuccess;

@@ -2,6 +2,7 @@
 // `hybridcd check`: one line per pose, 1 collision-free or 0 colliding; a summary on stderr.
 #include "command_line.h"
 #include "commands.h"
+#include "problem_checks.h"
 
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/io/problem_scene.h"
@@ -16,12 +17,13 @@ namespace hcd::cli
 {
 int runCheck(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"states", "checker"}), {"surface-only"});
+    const CommandLine cl(args, withCommonOptions({"states", "checker"}), {"surface-only"});
     if (!cl.has("states"))
         throw UsageError("check needs --states FILE");
-    const LoadedProblem problem = loadProblem(cl.problem());
+    const CheckerOptions options = checkerOptionsOf(cl);
+    const LoadedProblem problem = loadProblemFor(cl);
     const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl));
+    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, options);
 
     std::string out;
     out.reserve(poses.size() * 2);
@@ -46,15 +48,14 @@ namespace hcd::cli
 {
 int runContacts(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"states", "checker", "limit"}), {"surface-only"});
+    const CommandLine cl(args, withCommonOptions({"states", "checker", "limit"}), {"surface-only"});
     if (!cl.has("states"))
         throw UsageError("contacts needs --states FILE");
-    const long long limit = cl.integer("limit", 1000);
-    if (limit < 1)
-        throw UsageError("--limit needs a positive number");
-    const LoadedProblem problem = loadProblem(cl.problem());
+    const long long limit = cl.positiveInteger("limit", 1000);
+    const CheckerOptions options = checkerOptionsOf(cl);
+    const LoadedProblem problem = loadProblemFor(cl);
     const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl));
+    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, options);
     std::ostringstream out;
     out << std::setprecision(10);
     for (std::size_t p = 0; p < poses.size(); ++p)

@@ -2,14 +2,15 @@
 // `hybridcd inspect`: what was loaded, and what each checker builds from it.
 #include "command_line.h"
 #include "commands.h"
+#include "problem_checks.h"
 
 #include "hybridcd/geometry/solid_components.h"
+#include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/query/checker_registry.h"
 
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -66,9 +67,15 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
 
 int runInspect(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"checker", "level", "export"}), {"surface-only"});
-    const LoadedProblem problem = loadProblem(cl.problem());
+    const CommandLine cl(args, withCommonOptions({"checker", "level", "export"}), {"surface-only"});
+    const CheckerOptions checkerOptions = checkerOptionsOf(cl);
+    const long long level = cl.integer("level", 0);
+    if (level < 0)
+        throw UsageError("option --level needs a non-negative tree level, got '" + cl.text("level", "") + "'");
+    const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
+    if (cl.has("export"))
+        checkOutputPath(cl.text("export", ""), "--export", inputFilesOf(problem));
     std::cout << "problem: " << cfg.name << " (" << cfg.path << ")\n"
               << "state space: " << (cfg.planar ? "SE2" : "SE3") << '\n';
     if (!cfg.control.empty())
@@ -81,7 +88,7 @@ int runInspect(const std::vector<std::string> &args)
     while (std::getline(names, name, ','))
     {
         const auto start = std::chrono::steady_clock::now();
-        const auto checker = makeChecker(name, problem.scene, checkerOptionsOf(cl));
+        const auto checker = makeChecker(name, problem.scene, checkerOptions);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::cout << "checker " << checker->name() << ": built in " << seconds * 1e3 << " ms\n";
         for (const HierarchyReport &h : checker->hierarchies(true))
@@ -96,14 +103,10 @@ int runInspect(const std::vector<std::string> &args)
         if (cl.has("export"))
         {
             const std::string path = cl.text("export", "");
-            std::ofstream obj(path);
-            if (!obj)
-                throw InputError(path, 0, "cannot write the export file");
-            const long long level = cl.integer("level", 0);
-            if (level < 0)
-                throw UsageError("--level needs a non-negative tree level");
-            if (!checker->exportLevel(int(level), obj))
+            AtomicFile obj(path);
+            if (!checker->exportLevel(int(level), obj.stream()))
                 throw UsageError("checker '" + name + "' has no hierarchy to export");
+            obj.commit();
             std::cout << "  level " << level << " volumes written to " << path << '\n';
         }
     }

@@ -87,6 +87,22 @@ long long CommandLine::integer(const std::string &key, long long fallback) const
     throw UsageError("option --" + key + " needs a whole number, got '" + it->second + "'");
 }
 
+double CommandLine::positiveNumber(const std::string &key, double fallback) const
+{
+    const double v = number(key, fallback);
+    if (v <= 0.0)
+        throw UsageError("option --" + key + " needs a positive number, got '" + text(key, "") + "'");
+    return v;
+}
+
+long long CommandLine::positiveInteger(const std::string &key, long long fallback) const
+{
+    const long long v = integer(key, fallback);
+    if (v < 1)
+        throw UsageError("option --" + key + " needs a positive whole number, got '" + text(key, "") + "'");
+    return v;
+}
+
 const std::string &CommandLine::problem() const
 {
     if (positionals_.size() != 1)
@@ -103,14 +119,22 @@ CheckerOptions checkerOptionsOf(const CommandLine &cl)
     const std::string mode = cl.text("mode", "exact");
     if (mode == "approximate")
     {
-        options.approximateTolerance = cl.number("tolerance", 0.0);
-        if (options.approximateTolerance < 0.0)
-            throw UsageError("--tolerance needs a non-negative distance");
+        if (!cl.has("tolerance"))
+            throw UsageError("option --mode approximate needs --tolerance T, a positive distance");
+        options.approximateTolerance = cl.positiveNumber("tolerance", 0.0);
     }
     else if (mode != "exact")
-        throw UsageError("--mode expects exact or approximate, got '" + mode + "'");
+        throw UsageError("option --mode expects exact or approximate, got '" + mode + "'");
     else if (cl.has("tolerance"))
-        throw UsageError("--tolerance applies to --mode approximate");
+        throw UsageError("option --tolerance applies to --mode approximate");
     return options;
+}
+
+std::uint_fast32_t seedOf(const CommandLine &cl)
+{
+    const long long seed = cl.integer("seed", 1);
+    if (seed < 1 || seed > 4294967295LL)
+        throw UsageError("option --seed needs a whole number from 1 to 4294967295, got '" + cl.text("seed", "") + "'");
+    return std::uint_fast32_t(seed);
 }
 }  // namespace hcd::cli

@@ -4,6 +4,7 @@
 
 #include "hybridcd/query/checker_registry.h"
 
+#include <cstdint>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -30,6 +31,10 @@ public:
     std::string text(const std::string &key, const std::string &fallback) const;
     double number(const std::string &key, double fallback) const;
     long long integer(const std::string &key, long long fallback) const;
+    /// number() that must be greater than zero (times, tolerances, limits); a UsageError names the option.
+    double positiveNumber(const std::string &key, double fallback) const;
+    /// integer() that must be at least 1 (counts, limits).
+    long long positiveInteger(const std::string &key, long long fallback) const;
     /// The single positional argument every command takes (the problem file).
     const std::string &problem() const;
 
@@ -39,13 +44,17 @@ private:
 };
 
 /// Options every checker-building command shares: --surface-only, --mode exact|approximate and
-/// --tolerance T (the LP checker's approximate mode).
+/// --tolerance T (the LP checker's approximate mode; required there, and positive).
 CheckerOptions checkerOptionsOf(const CommandLine &cl);
 
-/// The option names checkerOptionsOf reads, to add to a command's accepted options.
-inline std::set<std::string> withCheckerOptions(std::set<std::string> valued) 
+/// The valued options every command accepts, added to a command's own: those checkerOptionsOf
+/// reads, and --max-triangles (the mesh size bound, see MeshLimits).
+inline std::set<std::string> withCommonOptions(std::set<std::string> valued)
 {
-    valued.insert({"mode", "tolerance"});
+    valued.insert({"mode", "tolerance", "max-triangles"});
     return valued;
 }
+
+/// --seed as OMPL takes it: a whole number from 1 to 2^32 - 1 (OMPL ignores a seed of 0).
+std::uint_fast32_t seedOf(const CommandLine &cl);
 }  // namespace hcd::cli

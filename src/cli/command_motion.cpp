@@ -2,6 +2,7 @@
 // `hybridcd check-motion` and `hybridcd clearance`: continuous motion checks and distances per line.
 #include "command_line.h"
 #include "commands.h"
+#include "problem_checks.h"
 
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/ompl/continuous_motion_validator.h"
@@ -48,17 +49,22 @@ void recordToState(const PoseRecord &r, bool planar, ompl::base::State *state)
 
 int runCheckMotion(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"motions", "checker", "contact-tolerance"}), {"surface-only"});
+    const CommandLine cl(args, withCommonOptions({"motions", "checker", "contact-tolerance"}), {"surface-only"});
     if (!cl.has("motions"))
         throw UsageError("check-motion needs --motions FILE");
-    const LoadedProblem problem = loadProblem(cl.problem());
+    // A fraction of the motion: zero would bisect without end, more than 1 says nothing.
+    const double contactTolerance = cl.positiveNumber("contact-tolerance", 1e-6);
+    if (contactTolerance > 1.0)
+        throw UsageError("option --contact-tolerance needs a fraction of the motion in (0, 1], got '" +
+                         cl.text("contact-tolerance", "") + "'");
+    const CheckerOptions options = checkerOptionsOf(cl);
+    const LoadedProblem problem = loadProblemFor(cl);
     const auto motions = readMotions(cl.text("motions", ""), problem.config.planar);
-    PlanningProblem planning =
-        makePlanningProblem(problem, makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl)),
-                            MotionCheck::Continuous);
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker(cl.text("checker", "obb"), problem.scene, options),
+                                                   MotionCheck::Continuous);
     const auto si = planning.setup->getSpaceInformation();
     auto validator = std::dynamic_pointer_cast<ContinuousMotionValidator>(si->getMotionValidator());
-    validator->setContactTolerance(cl.number("contact-tolerance", 1e-6));
+    validator->setContactTolerance(contactTolerance);
     validator->setApplyBounds(false);  // as in `check`, only collisions decide
 
     ompl::base::State *a = si->allocState(), *b = si->allocState(), *last = si->allocState();
@@ -92,12 +98,13 @@ int runCheckMotion(const std::vector<std::string> &args)
 
 int runClearance(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"states", "checker"}), {"surface-only"});
+    const CommandLine cl(args, withCommonOptions({"states", "checker"}), {"surface-only"});
     if (!cl.has("states"))
         throw UsageError("clearance needs --states FILE");
-    const LoadedProblem problem = loadProblem(cl.problem());
+    const CheckerOptions options = checkerOptionsOf(cl);
+    const LoadedProblem problem = loadProblemFor(cl);
     const auto poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, checkerOptionsOf(cl));
+    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, options);
     std::ostringstream out;
     out << std::setprecision(std::numeric_limits<double>::max_digits10);
     // Free: the exact distance. Colliding: minus the penetration estimate (0 when contained in a

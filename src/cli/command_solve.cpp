@@ -2,7 +2,9 @@
 // `hybridcd solve`: plan, simplify, report, write the path in OMPL.app's .path format.
 #include "command_line.h"
 #include "commands.h"
+#include "problem_checks.h"
 
+#include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/ompl/planning_problem.h"
@@ -14,7 +16,6 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -43,37 +44,40 @@ std::vector<std::pair<std::string, std::string>> parseParams(const std::string &
 
 int runSolve(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCheckerOptions({"planner", "time", "seed", "checker", "out", "param", "motion"}), {"verbose", "surface-only"});
+    const CommandLine cl(args, withCommonOptions({"planner", "time", "seed", "checker", "out", "param", "motion"}), {"verbose", "surface-only"});
     if (cl.text("planner", "") == "help")
     {
         for (const std::string &n : plannerNames())
             std::cout << n << '\n';
         return kSuccess;
     }
+    // Every option is checked before anything is loaded or planned.
     // The seed must be set before OMPL creates its first random number generator.
     if (cl.has("seed"))
-        ompl::RNG::setSeed(std::uint_fast32_t(cl.integer("seed", 0)));
+        ompl::RNG::setSeed(seedOf(cl));
     if (cl.has("verbose"))
         ompl::msg::setLogLevel(ompl::msg::LOG_INFO);
-    const double timeLimit = cl.number("time", 10.0);
-    if (timeLimit <= 0.0)
-        throw UsageError("--time needs a positive number of seconds");
+    const double timeLimit = cl.positiveNumber("time", 10.0);
+    const CheckerOptions checkerOptions = checkerOptionsOf(cl);
+    const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));
+    const auto params = parseParams(cl.text("param", ""));
 
-    const LoadedProblem problem = loadProblem(cl.problem());
+    const LoadedProblem problem = loadProblemFor(cl);
+    // The default name cannot be OMPL.app's NAME.path, which its problem folders ship as samples.
+    const std::string outPath = cl.text("out", problem.config.name + ".solution.path");
+    checkOutputPath(outPath, cl.has("out") ? "--out" : "the default output", inputFilesOf(problem));
+    requireStartAndGoalInVolume(problem.config);
+
     const std::string checkerName = cl.text("checker", "obb");
     const auto buildStart = std::chrono::steady_clock::now();
-    std::shared_ptr<const CollisionChecker> checker = makeChecker(checkerName, problem.scene, checkerOptionsOf(cl));
+    std::shared_ptr<const CollisionChecker> checker = makeChecker(checkerName, problem.scene, checkerOptions);
     const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
 
-    PlanningProblem planning = makePlanningProblem(problem, checker, parseMotionCheck(cl.text("motion", "continuous")));
-    PlannerRequest request{cl.text("planner", "rrtconnect"), "", parseParams(cl.text("param", ""))};
+    PlanningProblem planning = makePlanningProblem(problem, checker, motion);
+    requireCollisionFreeStartAndGoal(problem, planning);
+    PlannerRequest request{cl.text("planner", "rrtconnect"), "", params};
     planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
-
-    const auto &pdef = planning.setup->getProblemDefinition();
-    if (!planning.validity->isValid(pdef->getStartState(0)))
-        std::cerr << "hybridcd: warning: the start state is in collision or out of bounds\n";
-    planning.validity->resetCounters();
 
     const ompl::base::PlannerStatus status = planning.setup->solve(timeLimit);
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
@@ -101,14 +105,12 @@ int runSolve(const std::vector<std::string> &args)
     path.interpolate();
     std::cout << "states written (interpolated at OMPL's resolution): " << path.getStateCount() << '\n';
 
-    const std::string outPath = cl.text("out", problem.config.name + ".path");
-    std::ofstream out(outPath);
-    if (!out)
-        throw InputError(outPath, 0, "cannot write the solution path");
     std::vector<std::vector<double>> rows;
     for (std::size_t i = 0; i < path.getStateCount(); ++i)
         rows.push_back(stateToPoseValues(path.getState(i), planning.planar));
-    writePoses(out, rows);
+    AtomicFile out(outPath);
+    writePoses(out.stream(), rows);
+    out.commit();
     std::cout << "path written to: " << outPath << '\n';
     return kSuccess;
 }

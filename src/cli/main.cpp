@@ -31,6 +31,11 @@ commands:
   bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
            [--time SECONDS] [--memory MB] [--shard I/N] [--out FILE.log] [--motion ...] [--seed N]
 
+Every command takes --max-triangles N (meshes above N triangles, default 2000000, are refused).
+Exit status: 0 success, 1 bad input or options (nothing is written), 2 solve found no path in time.
+Output files are written to a temporary file and renamed into place; solve's default output is
+NAME.solution.path in the current folder, and no output may replace the .cfg or its meshes.
+
 Checkers: obb (default), lp (convex pieces tested by linear programming; --mode exact|approximate
 --tolerance T), bruteforce, fcl (when built with FCL).
 Closed mesh components are solids (containment is contact); --surface-only treats meshes as

@@ -4,6 +4,7 @@
 #include "hybridcd/io/input_error.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -16,6 +17,9 @@ namespace
 // Reads every non-blank, non-comment line as at least `columns` finite numbers.
 std::vector<PoseRecord> readRows(const std::string &path, std::size_t columns, const char *what)
 {
+    // A folder opens as an empty stream on Linux: without this check it would read as no poses.
+    if (std::filesystem::is_directory(path))
+        throw InputError(path, 0, "is a folder, not a pose file");
     std::ifstream in(path);
     if (!in)
         throw InputError(path, 0, "cannot open file (missing or unreadable)");
@@ -60,6 +64,24 @@ std::vector<PoseRecord> readRows(const std::string &path, std::size_t columns, c
     }
     return rows;
 }
+
+// Checks the quaternion (x y z w) at values[first..first+3] and scales it to unit norm.
+void normaliseQuaternion(PoseRecord &row, std::size_t first, const std::string &path)
+{
+    double *q = row.values.data() + first;
+    const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (norm == 0.0)
+        throw InputError(path, row.line, "the quaternion (qx qy qz qw) is zero; a rotation needs a unit quaternion");
+    if (std::abs(norm - 1.0) > kQuaternionNormTolerance)
+    {
+        std::ostringstream message;
+        message << "the quaternion (qx qy qz qw) has norm " << norm << "; a unit quaternion is expected (within "
+                << kQuaternionNormTolerance << ")";
+        throw InputError(path, row.line, message.str());
+    }
+    for (int k = 0; k < 4; ++k)
+        q[k] /= norm;
+}
 }  // namespace
 
 RigidTransform poseToTransform(const PoseRecord &pose, bool planar)
@@ -72,7 +94,12 @@ RigidTransform poseToTransform(const PoseRecord &pose, bool planar)
 
 std::vector<PoseRecord> readPoses(const std::string &path, bool planar)
 {
-    return readRows(path, poseColumns(planar), planar ? "a planar pose (x y theta)" : "a pose (x y z qx qy qz qw)");
+    std::vector<PoseRecord> rows =
+        readRows(path, poseColumns(planar), planar ? "a planar pose (x y theta)" : "a pose (x y z qx qy qz qw)");
+    if (!planar)
+        for (PoseRecord &row : rows)
+            normaliseQuaternion(row, 3, path);
+    return rows;
 }
 
 std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar)
@@ -81,6 +108,11 @@ std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &pa
     std::vector<std::pair<PoseRecord, PoseRecord>> motions;
     for (PoseRecord &row : readRows(path, 2 * n, "a motion (two poses)"))
     {
+        if (!planar)
+        {
+            normaliseQuaternion(row, 3, path);
+            normaliseQuaternion(row, n + 3, path);
+        }
         PoseRecord a{{row.values.begin(), row.values.begin() + long(n)}, row.line};
         PoseRecord b{{row.values.begin() + long(n), row.values.begin() + long(2 * n)}, row.line};
         motions.emplace_back(std::move(a), std::move(b));

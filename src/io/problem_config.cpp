@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 namespace hcd
 {
@@ -60,10 +61,69 @@ public:
 private:
     std::string path_;
 };
+
+// Every key OMPL.app's .cfg files use (all of its shipped problems), so that none of them warns.
+bool isKnownProblemKey(const std::string &key)
+{
+    static const std::set<std::string> known = [] {
+        std::set<std::string> k = {"name", "robot", "world", "control", "objective", "objective.threshold", "sampler"};
+        for (const char *pose : {"start", "goal"})
+            for (const char *field : {"x", "y", "z", "theta", "axis.x", "axis.y", "axis.z"})
+                k.insert(std::string(pose) + "." + field);
+        for (const char *bound : {"min", "max"})
+            for (const char *axis : {"x", "y", "z"})
+                k.insert(std::string("volume.") + bound + "." + axis);
+        return k;
+    }();
+    return known.count(key) > 0;
+}
+
+// [benchmark] keys: the limits hybridcd reads and OMPL.app's front-end options it does not need.
+bool isKnownBenchmarkKey(const std::string &key)
+{
+    static const std::set<std::string> known = {"time_limit", "mem_limit", "run_count", "output", "save_paths"};
+    return known.count(key) > 0;
+}
+
+// Length of the UTF-8 sequence starting at line[i], or 0 when it is not valid UTF-8.
+std::size_t utf8Length(const std::string &line, std::size_t i)
+{
+    const unsigned char c = static_cast<unsigned char>(line[i]);
+    const std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+    if (n == 0 || i + n > line.size())
+        return 0;
+    for (std::size_t k = 1; k < n; ++k)
+        if ((static_cast<unsigned char>(line[i + k]) >> 6) != 0x2)
+            return 0;
+    return n;
+}
+
+// Text holds no control characters other than tab and carriage return, and is valid UTF-8
+// (which includes ASCII); anything else means a binary file was given (an image, a mesh, an
+// archive), which deserves a clear message rather than "expected 'key = value'" and garbage.
+void rejectBinary(const std::string &line, const std::string &path, int lineNo)
+{
+    for (std::size_t i = 0; i < line.size();)
+    {
+        const unsigned char c = static_cast<unsigned char>(line[i]);
+        const std::size_t n = utf8Length(line, i);
+        if (n == 0 || (c < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
+            throw InputError(path, lineNo,
+                             "binary data (byte " + std::to_string(int(c)) + " in column " + std::to_string(i + 1) +
+                                 "); a problem file is an OMPL.app .cfg text file");
+        i += n;
+    }
+}
 }  // namespace
 
 ProblemConfig readProblemConfig(const std::string &path)
 {
+    // Only regular files: a folder opens as an empty stream, and a device such as /dev/zero
+    // would be read without end.
+    if (std::filesystem::is_directory(path))
+        throw InputError(path, 0, "is a folder, not a problem file (.cfg)");
+    if (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path))
+        throw InputError(path, 0, "is not a regular file; a problem file (.cfg) is expected");
     std::ifstream in(path);
     if (!in)
         throw InputError(path, 0, "cannot open problem file (missing or unreadable)");
@@ -78,6 +138,9 @@ ProblemConfig readProblemConfig(const std::string &path)
     while (std::getline(in, raw))
     {
         ++lineNo;
+        if (lineNo == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0)
+            raw.erase(0, 3);  // a UTF-8 byte-order mark, as some editors write
+        rejectBinary(raw, path, lineNo);
         const std::string line = trim(raw);
         if (line.empty() || line[0] == '#' || line[0] == ';')
             continue;
@@ -100,10 +163,18 @@ ProblemConfig readProblemConfig(const std::string &path)
         if (section.empty())
             throw InputError(path, lineNo, "'" + key + "' appears before any [section]");
 
-        if (section == "problem")
-            problem[key] = {value, lineNo};
-        else if (section == "benchmark")
-            benchmark[key] = {value, lineNo};
+        if (section == "problem" || section == "benchmark")
+        {
+            auto &entries = section == "problem" ? problem : benchmark;
+            const auto [previous, inserted] = entries.emplace(key, Entry{value, lineNo});
+            if (!inserted)
+                throw InputError(path, lineNo,
+                                 "duplicate key '" + key + "' in [" + section + "] (first set on line " +
+                                     std::to_string(previous->second.line) + ")");
+            if (!(section == "problem" ? isKnownProblemKey(key) : isKnownBenchmarkKey(key)))
+                cfg.warnings.push_back(path + ":" + std::to_string(lineNo) + ": unknown key '" + key + "' in [" +
+                                       section + "] ignored");
+        }
         else
         {
             // "type=" declares a planner; "type.name=" and "type.param=" refine the latest of that type.
@@ -120,6 +191,12 @@ ProblemConfig readProblemConfig(const std::string &path)
                                    [&](const PlannerRequest &r) { return r.type == type; });
             if (it == cfg.planners.rend())
                 throw InputError(path, lineNo, "setting for planner '" + type + "' before a '" + type + "=' line declares it");
+            // A setting repeated for the same planner is a mistake: the last one would silently win.
+            const bool repeated = param == "name" ? !it->displayName.empty()
+                                                  : std::any_of(it->parameters.begin(), it->parameters.end(),
+                                                                [&](const auto &p) { return p.first == param; });
+            if (repeated)
+                throw InputError(path, lineNo, "duplicate setting '" + key + "' for the same '" + type + "=' planner");
             if (param == "name")
                 it->displayName = value;
             else
@@ -161,6 +238,7 @@ ProblemConfig readProblemConfig(const std::string &path)
         cfg.control = c->value;
 
     auto readPose = [&](const std::string &prefix, ConfigPose &pose) {
+        (prefix == "start" ? cfg.startLine : cfg.goalLine) = require(prefix + ".x").line;
         pose.x = parser.number(prefix + ".x", require(prefix + ".x"));
         pose.y = parser.number(prefix + ".y", require(prefix + ".y"));
         pose.theta = numberOr(prefix + ".theta", 0.0);
@@ -170,6 +248,13 @@ ProblemConfig readProblemConfig(const std::string &path)
             pose.axisX = numberOr(prefix + ".axis.x", 1.0);
             pose.axisY = numberOr(prefix + ".axis.y", 0.0);
             pose.axisZ = numberOr(prefix + ".axis.z", 0.0);
+            // A zero axis has no direction: the rotation would silently be the identity.
+            if (pose.theta != 0.0 && pose.axisX == 0.0 && pose.axisY == 0.0 && pose.axisZ == 0.0)
+            {
+                const Entry *at = get(prefix + ".axis.x") ? get(prefix + ".axis.x") : get(prefix + ".theta");
+                throw InputError(path, at->line, prefix + ".axis is zero; a rotation of " + prefix +
+                                                     ".theta needs a non-zero axis");
+            }
         }
     };
     readPose("start", cfg.start);
@@ -213,10 +298,13 @@ ProblemConfig readProblemConfig(const std::string &path)
 
     for (const auto &[key, e] : benchmark)
     {
-        if (key == "time_limit")
-            cfg.benchmark.timeLimit = parser.number(key, e);
-        else if (key == "mem_limit")
-            cfg.benchmark.memoryLimit = parser.number(key, e);
+        if (key == "time_limit" || key == "mem_limit")
+        {
+            const double limit = parser.number(key, e);
+            if (limit <= 0.0)
+                throw InputError(path, e.line, key + " needs a positive number, got '" + e.value + "'");
+            (key == "time_limit" ? cfg.benchmark.timeLimit : cfg.benchmark.memoryLimit) = limit;
+        }
         else if (key == "run_count")
         {
             const double runs = parser.number(key, e);

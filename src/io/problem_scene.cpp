@@ -5,13 +5,13 @@
 
 namespace hcd
 {
-LoadedProblem loadProblem(const std::string &cfgPath)
+LoadedProblem loadProblem(const std::string &cfgPath, const MeshLimits &limits)
 {
     LoadedProblem p;
     p.config = readProblemConfig(cfgPath);
     try
     {
-        p.robot = loadMesh(p.config.robotMesh, p.config.planar ? MeshRole::RobotPlanar : MeshRole::Robot3D);
+        p.robot = loadMesh(p.config.robotMesh, p.config.planar ? MeshRole::RobotPlanar : MeshRole::Robot3D, limits);
     }
     catch (const InputError &e)
     {
@@ -21,7 +21,7 @@ LoadedProblem loadProblem(const std::string &cfgPath)
     {
         try
         {
-            p.world = loadMesh(p.config.worldMesh, MeshRole::Environment);
+            p.world = loadMesh(p.config.worldMesh, MeshRole::Environment, limits);
         }
         catch (const InputError &e)
         {

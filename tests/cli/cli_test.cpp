@@ -93,9 +93,9 @@ TEST(Cli, BadInputGivesClearErrorsAndNonZeroExit)
     }
 }
 
-TEST(Cli, UnsolvableProblemExitsNonZero)
+TEST(Cli, CollidingGoalIsRejectedBeforePlanning)
 {
-    // The goal lies inside the dividing wall: no planner can reach it.
+    // The goal lies inside the dividing wall: solve says so at once instead of spending --time.
     std::ifstream in(problem3d());
     std::stringstream text;
     text << in.rdbuf();
@@ -111,10 +111,22 @@ TEST(Cli, UnsolvableProblemExitsNonZero)
     const std::string dir = test::sourcePath("problems");
     const std::string path = dir + "/.unsolvable_test.cfg";
     std::ofstream(path) << cfg;
-    const CliRun r = run("solve " + path + " --time 1 --out /dev/null");
+    const CliRun r = run("solve " + path + " --time 60 --out /dev/null");
     std::remove(path.c_str());
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find(".unsolvable_test.cfg:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the goal (0, 20, 20) collides with the environment"), std::string::npos) << r.output;
+}
+
+TEST(Cli, NoPathInTimeExitsTwo)
+{
+    // Start and goal are free, but a tenth of a millisecond is far too short to pass the window.
+    const std::string out = test::writeTempFile("unsolved.path", "");
+    std::remove(out.c_str());
+    const CliRun r = run("solve " + problem3d() + " --seed 1 --time 0.0001 --out " + out);
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("solved: no"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::ifstream(out).good()) << "no path file is written when nothing was solved";
 }
 
 TEST(Cli, ClearanceAndCheckMotion)

@@ -42,6 +42,9 @@ TEST(ProblemConfig, ReadsEveryOmplAppProblemOrNamesTheMissingMesh)
                 continue;
             const std::string cfgPath = entry.path().string();
             const ProblemConfig cfg = readProblemConfig(cfgPath);
+            // Every key OMPL.app uses is known: none of its problems warns.
+            for (const std::string &warning : cfg.warnings)
+                ADD_FAILURE() << warning;
             const bool meshesExist = std::filesystem::exists(cfg.robotMesh) &&
                                      (cfg.worldMesh.empty() || std::filesystem::exists(cfg.worldMesh));
             try

@@ -7,6 +7,11 @@
 // transform parent x node; only faces with exactly three indices are triangles (SketchUp exports
 // edges as line primitives). A robot is shifted by minus the single-precision mean of all its
 // instanced vertices, with the shift's z zeroed for planar problems; an environment is not moved.
+//
+// One deliberate difference: assimp's JoinIdenticalVertices merges distinct vertices of meshes a
+// few hundred-millionths across (it collapsed triangles of a 1e-9 box in tests), so a mesh smaller
+// than kTinyMeshExtent is imported again without that step, and its robot shift is the mean of
+// that import's vertices. OMPL.app would see a broken mesh there, so no compatibility is lost.
 #pragma once
 
 #include "hybridcd/geometry/triangle_mesh.h"
@@ -23,6 +28,21 @@ enum class MeshRole
     RobotPlanar,  ///< centred on its vertex mean in x and y only
 };
 
+/// Bounding-box diagonal below which a mesh is imported without assimp's vertex joining.
+constexpr double kTinyMeshExtent = 1e-3;
+
+/// Bounds on what loadMesh accepts, so that a huge or hostile file fails at once with a message
+/// instead of exhausting memory. Peak memory is about 0.7 KB per triangle with the obb checker
+/// (a 1e6-triangle mesh: 684 MB resident during `inspect`), so the default bounds a run near 1.5 GB.
+struct MeshLimits
+{
+    /// Triangles per mesh, counted over every instance in the scene graph before any is copied.
+    std::size_t maxTriangles = 2'000'000;
+    /// File size allowed per allowed triangle, checked before the file is read (ASCII STL takes
+    /// about 250 bytes per triangle, binary STL 50, COLLADA and OBJ less with shared vertices).
+    std::size_t bytesPerTriangle = 128;
+};
+
 struct LoadedMesh
 {
     /// Never null (an empty mesh until loaded); immutable, so a CollisionScene can share it.
@@ -34,6 +54,7 @@ struct LoadedMesh
 };
 
 /// Loads any format assimp reads (COLLADA, OBJ, STL, PLY, OFF, ...). Throws InputError naming the
-/// file when it is missing, unreadable, or holds no triangle.
-LoadedMesh loadMesh(const std::string &path, MeshRole role);
+/// file when it is missing, a folder, unreadable, beyond `limits`, holds no triangle, or only
+/// degenerate ones. Non-manifold meshes load: their closed components are solids, the rest surfaces.
+LoadedMesh loadMesh(const std::string &path, MeshRole role, const MeshLimits &limits = {});
 }  // namespace hcd

@@ -17,6 +17,11 @@ struct PoseRecord
     int line = 0;
 };
 
+/// How far from 1 the norm of a pose file's quaternion may be: OMPL.app and hybridcd write unit
+/// quaternions with 17 significant digits, so anything beyond this is a wrong file, not rounding.
+/// Accepted quaternions are normalised; a zero quaternion is never read as the identity.
+constexpr double kQuaternionNormTolerance = 1e-3;
+
 /// Number of leading columns a pose needs: 7 in 3D, 3 in the plane.
 inline std::size_t poseColumns(bool planar) { return planar ? 3 : 7; }
 
@@ -24,7 +29,9 @@ inline std::size_t poseColumns(bool planar) { return planar ? 3 : 7; }
 RigidTransform poseToTransform(const PoseRecord &pose, bool planar);
 
 /// Reads poses; blank lines and '#' comments are skipped, columns after the pose are ignored.
-/// Throws InputError("FILE:LINE: ...") on a short line, a malformed or non-finite number.
+/// Throws InputError("FILE:LINE: ...") on a short line, a malformed or non-finite number, or a
+/// quaternion whose norm is 0 or differs from 1 by more than kQuaternionNormTolerance; accepted
+/// quaternions are normalised. A folder or a file that cannot be opened is an InputError too.
 std::vector<PoseRecord> readPoses(const std::string &path, bool planar);
 
 /// Reads motions: two poses per line (14 numbers in 3D, 6 in the plane).

@@ -34,6 +34,8 @@ struct ProblemConfig
     std::string worldMesh;   ///< resolved; empty when the problem has no environment
     int robotLine = 0;       ///< lines of the robot/world keys, for error messages
     int worldLine = 0;
+    int startLine = 0;       ///< lines of start.x and goal.x, for messages about the start or goal
+    int goalLine = 0;
     bool planar = false;     ///< SE2 when the start has no z, as OMPL.app decides
     std::string control;     ///< e.g. "dynamic_car" (kinodynamic problems; planned geometrically here)
     ConfigPose start, goal;
@@ -43,9 +45,15 @@ struct ProblemConfig
     std::string sampler;     ///< valid-state sampler: uniform, gaussian, obstacle_based, max_clearance, bridge_test
     BenchmarkSettings benchmark;
     std::vector<PlannerRequest> planners;  ///< in file order
+    /// "FILE:LINE: ..." notes on keys that were ignored (unknown to OMPL.app and hybridcd); the
+    /// caller decides how to show them.
+    std::vector<std::string> warnings;
 };
 
-/// Parses `path`. Throws InputError("FILE:LINE: ...") for unreadable files, malformed lines, bad
-/// numbers, parameters of a planner that was never declared, and missing required keys.
+/// Parses `path`. Throws InputError("FILE:LINE: ...") for unreadable files, folders, binary data,
+/// malformed lines, bad numbers, a key set twice in a section (or a planner setting given twice
+/// for the same planner), parameters of a planner that was never declared, non-positive benchmark
+/// limits, a rotation axis of zero length, and missing required keys. Unknown keys are not errors:
+/// each adds a line to ProblemConfig::warnings.
 ProblemConfig readProblemConfig(const std::string &path);
 }  // namespace hcd

@@ -19,5 +19,6 @@ struct LoadedProblem
 
 /// Reads the .cfg and its meshes. Mesh errors are reported against the .cfg line that names the
 /// mesh: "problem.cfg:3: world mesh: path/to/mesh.dae: cannot open mesh file ...".
-LoadedProblem loadProblem(const std::string &cfgPath);
+/// `limits` bound each mesh (see MeshLimits).
+LoadedProblem loadProblem(const std::string &cfgPath, const MeshLimits &limits = {});
 }  // namespace hcd

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "problem_checks.h"
+
+#include "hybridcd/io/input_error.h"
+
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+namespace hcd::cli
+{
+namespace
+{
+std::string formatPose(const ConfigPose &p, bool planar)
+{
+    std::ostringstream s;
+    s << "(" << p.x << ", " << p.y;
+    if (!planar)
+        s << ", " << p.z;
+    s << ")";
+    return s.str();
+}
+}  // namespace
+
+LoadedProblem loadProblemFor(const CommandLine &cl)
+{
+    MeshLimits limits;
+    limits.maxTriangles = std::size_t(cl.positiveInteger("max-triangles", (long long)(limits.maxTriangles)));
+    LoadedProblem problem = loadProblem(cl.problem(), limits);
+    for (const std::string &warning : problem.config.warnings)
+        std::cerr << "hybridcd: warning: " << warning << '\n';
+    return problem;
+}
+
+std::vector<std::string> inputFilesOf(const LoadedProblem &problem)
+{
+    return {problem.config.path, problem.config.robotMesh, problem.config.worldMesh};
+}
+
+void requireStartAndGoalInVolume(const ProblemConfig &config)
+{
+    const std::optional<std::pair<double, double>> volume[3] = {config.volumeX, config.volumeY, config.volumeZ};
+    const char *axes[3] = {"x", "y", "z"};
+    for (const bool isStart : {true, false})
+    {
+        const ConfigPose &pose = isStart ? config.start : config.goal;
+        const double position[3] = {pose.x, pose.y, pose.z};
+        const std::string which = isStart ? "start" : "goal";
+        for (int i = 0; i < (config.planar ? 2 : 3); ++i)
+            if (volume[i] && (position[i] < volume[i]->first || position[i] > volume[i]->second))
+            {
+                std::ostringstream message;
+                message << "the " << which << " " << formatPose(pose, config.planar)
+                        << " lies outside the problem's volume: " << which << "." << axes[i] << " = " << position[i]
+                        << " is not in [volume.min." << axes[i] << ", volume.max." << axes[i] << "] = ["
+                        << volume[i]->first << ", " << volume[i]->second << "]";
+                throw InputError(config.path, isStart ? config.startLine : config.goalLine, message.str());
+            }
+    }
+}
+
+void requireCollisionFreeStartAndGoal(const LoadedProblem &problem, const PlanningProblem &planning)
+{
+    const ProblemConfig &config = problem.config;
+    const auto si = planning.setup->getSpaceInformation();
+    ompl::base::State *state = si->allocState();
+    for (const bool isStart : {true, false})
+    {
+        const ConfigPose &pose = isStart ? config.start : config.goal;
+        // The same state the planner is given, so the verdict is the one it would reach.
+        configPoseToState(pose, config.planar, state);
+        if (!planning.validity->collisionFree(state))
+        {
+            si->freeState(state);
+            const std::string which = isStart ? "start" : "goal";
+            throw InputError(config.path, isStart ? config.startLine : config.goalLine,
+                             "the " + which + " " + formatPose(pose, config.planar) +
+                                 " collides with the environment (checker '" + planning.validity->checker().name() +
+                                 "'); no path can " + (isStart ? "leave" : "reach") + " it");
+        }
+    }
+    si->freeState(state);
+    planning.validity->resetCounters();
+}
+}  // namespace hcd::cli
