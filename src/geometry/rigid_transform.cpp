@@ -5,10 +5,20 @@
 
 namespace hcd
 {
+namespace
+{
+// A plain norm is exact enough here; outside this range its squares have over- or underflowed
+// (components beyond about 1e154 give infinity, below about 1e-154 zero or lost digits), and the
+// slower rescaling stableNorm() is used instead.
+bool inSafeRange(double norm) { return norm >= 1e-150 && norm <= 1e150; }
+}  // namespace
+
 RigidTransform RigidTransform::fromTranslationQuaternion(const Vec3 &t, double qw, double qx, double qy, double qz)
 {
     Eigen::Quaterniond q(qw, qx, qy, qz);
-    const double n = q.norm();
+    double n = q.norm();
+    if (!inSafeRange(n))
+        n = q.coeffs().stableNorm();
     if (n > 0.0 && std::isfinite(n))
         q.coeffs() /= n;
     return {q.toRotationMatrix(), t};
@@ -24,7 +34,9 @@ RigidTransform RigidTransform::fromPlanarPose(double x, double y, double yaw)
 
 RigidTransform RigidTransform::fromAxisAngle(const Vec3 &t, const Vec3 &axis, double angle)
 {
-    const double n = axis.norm();
+    double n = axis.norm();
+    if (!inSafeRange(n))
+        n = axis.stableNorm();
     if (!(n > 0.0))
         return {Mat3::Identity(), t};
     return {Eigen::AngleAxisd(angle, axis / n).toRotationMatrix(), t};
