@@ -23,17 +23,17 @@ void visitNodes(const aiScene *scene, const aiNode *node, aiMatrix4x4 transform,
     for (unsigned c = 0; c < node->mNumChildren; ++c)
         visitNodes(scene, node->mChildren[c], transform, visit);
 }
-}  // namespace
 
-LoadedMesh loadMesh(const std::string &path, MeshRole role)
+// OMPL.app's post-processing, for files and buffers alike, plus validation: assimp runs it before
+// the other steps, and without it some malformed files (e.g. an OFF file whose face lines run short)
+// reach a failed assertion in assimp's triangulation, which aborts the process. Validation only
+// rejects scenes; it never changes one.
+constexpr unsigned kPostProcessing = aiProcess_ValidateDataStructure | aiProcess_GenNormals | aiProcess_Triangulate |
+                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_OptimizeGraph;
+
+// The triangles of an imported scene, placed for `role`; `path` names the source in errors.
+LoadedMesh meshOfScene(const aiScene *scene, const Assimp::Importer &importer, const std::string &path, MeshRole role)
 {
-    if (!std::ifstream(path).good())
-        throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
-
-    Assimp::Importer importer;
-    const aiScene *scene =
-        importer.ReadFile(path, aiProcess_GenNormals | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                    aiProcess_SortByPType | aiProcess_OptimizeGraph);
     if (scene == nullptr)
         throw InputError(path, 0, std::string("cannot read mesh: ") + importer.GetErrorString());
     if (!scene->HasMeshes() || scene->mRootNode == nullptr)
@@ -91,5 +91,25 @@ LoadedMesh loadMesh(const std::string &path, MeshRole role)
     if (mesh.empty())
         throw InputError(path, 0, "every triangle of the mesh is degenerate (zero area)");
     return out;
+}
+}  // namespace
+
+LoadedMesh loadMesh(const std::string &path, MeshRole role)
+{
+    if (!std::ifstream(path).good())
+        throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
+    Assimp::Importer importer;
+    return meshOfScene(importer.ReadFile(path, kPostProcessing), importer, path, role);
+}
+
+LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
+                              const std::string &sourceName)
+{
+    // assimp refuses an empty buffer without saying why.
+    if (data.empty())
+        throw InputError(sourceName, 0, "mesh data is empty");
+    Assimp::Importer importer;
+    return meshOfScene(importer.ReadFileFromMemory(data.data(), data.size(), kPostProcessing, formatHint.c_str()),
+                       importer, sourceName, role);
 }
 }  // namespace hcd

@@ -12,6 +12,7 @@
 #include "hybridcd/geometry/triangle_mesh.h"
 
 #include <string>
+#include <string_view>
 
 namespace hcd
 {
@@ -34,4 +35,12 @@ struct LoadedMesh
 /// Loads any format assimp reads (COLLADA, OBJ, STL, PLY, OFF, ...). Throws InputError naming the
 /// file when it is missing, unreadable, or holds no triangle.
 LoadedMesh loadMesh(const std::string &path, MeshRole role);
+
+/// Loads a mesh file's contents held in memory, with the same post-processing, placement and
+/// errors as loadMesh. `formatHint` is the file extension assimp picks its reader by ("obj",
+/// "dae", ...; assimp sniffs the content when it is empty or unknown); `sourceName` names the
+/// data in errors. Files the data refers to (materials, textures) are looked up in the current
+/// folder. Throws InputError when the data is empty, unreadable, or holds no triangle.
+LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
+                              const std::string &sourceName);
 }  // namespace hcd

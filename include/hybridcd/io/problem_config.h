@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hcd
@@ -48,4 +49,9 @@ struct ProblemConfig
 /// Parses `path`. Throws InputError("FILE:LINE: ...") for unreadable files, malformed lines, bad
 /// numbers, parameters of a planner that was never declared, and missing required keys.
 ProblemConfig readProblemConfig(const std::string &path);
+
+/// Parses the text of a .cfg as readProblemConfig does a file. `path` is where the text came from:
+/// errors name it, the problem name defaults to its stem, and mesh paths are resolved against its
+/// folder (nothing is opened). Throws InputError as readProblemConfig does.
+ProblemConfig parseProblemConfig(std::string_view text, const std::string &path);
 }  // namespace hcd
