@@ -56,7 +56,8 @@ TEST(PathFile, ErrorsNameTheSourceAndLine)
     EXPECT_THROW(parsePoses("1 2 1e999\n", "p.txt", true), InputError);
 }
 
-// Found by fuzzing: the squares of quaternion components beyond about 1e154 overflowed, so the
+// Caught by the pose harness's rigidity check (tests/fuzz_corpus/pose/se3_extreme_quaternions.txt):
+// the squares of quaternion components beyond about 1e154 overflowed, so the
 // quaternion was not normalised and the "rotation" had infinite entries; components below about
 // 1e-154 squared to zero and gave the identity instead of their rotation.
 TEST(PathFile, ExtremeQuaternionsStillGiveTheirRotation)
@@ -83,7 +84,8 @@ TEST(PathFile, ExtremeAxesStillGiveTheirRotation)
     expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3::Zero(), quarter), Mat3::Identity(), "zero axis");
 }
 
-// Found by fuzzing: "0x1p-1074" was read, but writePoses writes it as 4.9406564584124654e-324,
+// Caught by the path harness's round-trip check (tests/fuzz_corpus/path/regression_hex_subnormal.path):
+// "0x1p-1074" was read, but writePoses writes it as 4.9406564584124654e-324,
 // which std::stod refuses (it throws on underflow), so a written path did not read back.
 TEST(PathFile, SubnormalNumbersAreNumbers)
 {
