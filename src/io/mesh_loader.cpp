@@ -24,12 +24,36 @@ void visitNodes(const aiScene *scene, const aiNode *node, aiMatrix4x4 transform,
         visitNodes(scene, node->mChildren[c], transform, visit);
 }
 
-// OMPL.app's post-processing, for files and buffers alike, plus validation: assimp runs it before
-// the other steps, and without it some malformed files (e.g. an OFF file whose face lines run short)
-// reach a failed assertion in assimp's triangulation, which aborts the process. Validation only
-// rejects scenes; it never changes one.
-constexpr unsigned kPostProcessing = aiProcess_ValidateDataStructure | aiProcess_GenNormals | aiProcess_Triangulate |
-                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_OptimizeGraph;
+// OMPL.app's post-processing, for files and buffers alike.
+constexpr unsigned kPostProcessing = aiProcess_GenNormals | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                     aiProcess_SortByPType | aiProcess_OptimizeGraph;
+
+// Finishes an import made with aiProcess_ValidateDataStructure only, the two guards against
+// malformed files that otherwise reach a failed assertion in assimp's triangulation, which aborts
+// the process: validation rejects e.g. an OFF file whose last face lost its line, and the
+// primitive-type flags are recomputed from the faces because the PLY reader, given a truncated
+// face list, flags a mesh as holding polygons when it holds none. Neither changes a valid scene;
+// the post-processing that follows is OMPL.app's, as ReadFile would have applied it.
+const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene)
+{
+    if (scene == nullptr)
+        return nullptr;
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i)
+    {
+        aiMesh *m = scene->mMeshes[i];
+        unsigned types = 0;
+        for (unsigned f = 0; f < m->mNumFaces; ++f)
+        {
+            const unsigned n = m->mFaces[f].mNumIndices;
+            types |= n == 1 ? aiPrimitiveType_POINT
+                     : n == 2 ? aiPrimitiveType_LINE
+                     : n == 3 ? aiPrimitiveType_TRIANGLE
+                              : aiPrimitiveType_POLYGON;
+        }
+        m->mPrimitiveTypes = types;
+    }
+    return importer.ApplyPostProcessing(kPostProcessing);
+}
 
 // The triangles of an imported scene, placed for `role`; `path` names the source in errors.
 LoadedMesh meshOfScene(const aiScene *scene, const Assimp::Importer &importer, const std::string &path, MeshRole role)
@@ -99,7 +123,8 @@ LoadedMesh loadMesh(const std::string &path, MeshRole role)
     if (!std::ifstream(path).good())
         throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
     Assimp::Importer importer;
-    return meshOfScene(importer.ReadFile(path, kPostProcessing), importer, path, role);
+    return meshOfScene(postProcess(importer, importer.ReadFile(path, aiProcess_ValidateDataStructure)), importer, path,
+                       role);
 }
 
 LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
@@ -109,7 +134,8 @@ LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHi
     if (data.empty())
         throw InputError(sourceName, 0, "mesh data is empty");
     Assimp::Importer importer;
-    return meshOfScene(importer.ReadFileFromMemory(data.data(), data.size(), kPostProcessing, formatHint.c_str()),
-                       importer, sourceName, role);
+    const aiScene *scene =
+        importer.ReadFileFromMemory(data.data(), data.size(), aiProcess_ValidateDataStructure, formatHint.c_str());
+    return meshOfScene(postProcess(importer, scene), importer, sourceName, role);
 }
 }  // namespace hcd

@@ -88,6 +88,26 @@ TEST(MeshLoader, MalformedOffIsAnErrorNotAnAbort)
     EXPECT_THROW(loadMeshFromMemory(text, "off", MeshRole::Robot3D, "short_face.off"), InputError);
 }
 
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_ply_truncated_faces.ply): a PLY file cut
+// off inside its face list passes assimp's validation, but its reader flags the mesh as holding
+// polygons, and the triangulation then fails an assertion and aborts. The loader recomputes the
+// flags from the faces; the two triangles that are there load.
+TEST(MeshLoader, TruncatedPlyLoadsWhatItHolds)
+{
+    const std::string text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                             "0 0 0\n4 0 0\n0 4 0\n4 4 0\n0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3";
+    try
+    {
+        const LoadedMesh m = loadMeshFromMemory(text, "ply", MeshRole::Environment, "truncated.ply");
+        EXPECT_GT(m.mesh.triangleCount(), 0u);
+    }
+    catch (const InputError &)
+    {
+        // Rejecting it is fine too; aborting is not.
+    }
+}
+
 TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
 {
     const std::string path = test::writeTempFile("robot.obj", kObj);
