@@ -28,13 +28,15 @@ void visitNodes(const aiScene *scene, const aiNode *node, aiMatrix4x4 transform,
 constexpr unsigned kPostProcessing = aiProcess_GenNormals | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                      aiProcess_SortByPType | aiProcess_OptimizeGraph;
 
-// Finishes an import made with aiProcess_ValidateDataStructure only, the two guards against
+// Finishes an import made with aiProcess_ValidateDataStructure only. Three guards against
 // malformed files that otherwise reach a failed assertion in assimp's triangulation, which aborts
-// the process: validation rejects e.g. an OFF file whose last face lost its line, and the
-// primitive-type flags are recomputed from the faces because the PLY reader, given a truncated
-// face list, flags a mesh as holding polygons when it holds none. Neither changes a valid scene;
-// the post-processing that follows is OMPL.app's, as ReadFile would have applied it.
-const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene)
+// the process: validation rejects e.g. an OFF file whose last face lost its line; a face without
+// any vertex index (a PLY face list cut short reads "0 0 0" as empty faces, which assimp's
+// validation lets through when the reader left the primitive types unset) is an error here; and
+// the primitive-type flags are recomputed from the faces, since triangulation asserts that a mesh
+// flagged as holding polygons holds one. None of this changes a valid scene; the post-processing
+// that follows is OMPL.app's, as ReadFile would have applied it.
+const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, const std::string &path)
 {
     if (scene == nullptr)
         return nullptr;
@@ -45,6 +47,9 @@ const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene)
         for (unsigned f = 0; f < m->mNumFaces; ++f)
         {
             const unsigned n = m->mFaces[f].mNumIndices;
+            if (n == 0 || m->mFaces[f].mIndices == nullptr)
+                throw InputError(path, 0, "malformed mesh: face " + std::to_string(f) + " of mesh " +
+                                              std::to_string(i) + " has no vertex index");
             types |= n == 1 ? aiPrimitiveType_POINT
                      : n == 2 ? aiPrimitiveType_LINE
                      : n == 3 ? aiPrimitiveType_TRIANGLE
@@ -123,8 +128,8 @@ LoadedMesh loadMesh(const std::string &path, MeshRole role)
     if (!std::ifstream(path).good())
         throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
     Assimp::Importer importer;
-    return meshOfScene(postProcess(importer, importer.ReadFile(path, aiProcess_ValidateDataStructure)), importer, path,
-                       role);
+    return meshOfScene(postProcess(importer, importer.ReadFile(path, aiProcess_ValidateDataStructure), path), importer,
+                       path, role);
 }
 
 LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
@@ -136,6 +141,6 @@ LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHi
     Assimp::Importer importer;
     const aiScene *scene =
         importer.ReadFileFromMemory(data.data(), data.size(), aiProcess_ValidateDataStructure, formatHint.c_str());
-    return meshOfScene(postProcess(importer, scene), importer, sourceName, role);
+    return meshOfScene(postProcess(importer, scene, sourceName), importer, sourceName, role);
 }
 }  // namespace hcd

@@ -88,24 +88,28 @@ TEST(MeshLoader, MalformedOffIsAnErrorNotAnAbort)
     EXPECT_THROW(loadMeshFromMemory(text, "off", MeshRole::Robot3D, "short_face.off"), InputError);
 }
 
-// Found by fuzzing (tests/fuzz_corpus/mesh/regression_ply_truncated_faces.ply): a PLY file cut
-// off inside its face list passes assimp's validation, but its reader flags the mesh as holding
-// polygons, and the triangulation then fails an assertion and aborts. The loader recomputes the
-// flags from the faces; the two triangles that are there load.
-TEST(MeshLoader, TruncatedPlyLoadsWhatItHolds)
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_ply_truncated_faces.ply): in a PLY file
+// whose vertex list lost a line, the face list reads "0 0 0" as two faces without any vertex index.
+// assimp's validation lets them through (the reader leaves the primitive types unset), they count
+// as polygons, and the triangulation fails an assertion and aborts. The loader now rejects a face
+// without indices before post-processing.
+TEST(MeshLoader, PlyFaceWithoutIndicesIsAnErrorNotAnAbort)
 {
     const std::string text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
                              "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
                              "0 0 0\n4 0 0\n0 4 0\n4 4 0\n0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3";
     try
     {
-        const LoadedMesh m = loadMeshFromMemory(text, "ply", MeshRole::Environment, "truncated.ply");
-        EXPECT_GT(m.mesh.triangleCount(), 0u);
+        loadMeshFromMemory(text, "ply", MeshRole::Environment, "truncated.ply");
+        FAIL() << "no error";
     }
-    catch (const InputError &)
+    catch (const InputError &e)
     {
-        // Rejecting it is fine too; aborting is not.
+        EXPECT_NE(std::string(e.what()).find("truncated.ply: malformed mesh: face 0 of mesh 0 has no vertex index"),
+                  std::string::npos)
+            << e.what();
     }
+    EXPECT_THROW(loadMesh(test::writeTempFile("truncated.ply", text), MeshRole::Environment), InputError);
 }
 
 TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
