@@ -123,24 +123,41 @@ LoadedMesh meshOfScene(const aiScene *scene, const Assimp::Importer &importer, c
 }
 }  // namespace
 
-LoadedMesh loadMesh(const std::string &path, MeshRole role)
+MeshImporter::MeshImporter() : importer_(std::make_unique<Assimp::Importer>()) {}
+
+MeshImporter::~MeshImporter() = default;
+
+LoadedMesh loadMesh(MeshImporter &context, const std::string &path, MeshRole role)
 {
     if (!std::ifstream(path).good())
         throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
-    Assimp::Importer importer;
+    Assimp::Importer &importer = *context.importer_;
     return meshOfScene(postProcess(importer, importer.ReadFile(path, aiProcess_ValidateDataStructure), path), importer,
                        path, role);
+}
+
+LoadedMesh loadMeshFromMemory(MeshImporter &context, std::string_view data, const std::string &formatHint,
+                              MeshRole role, const std::string &sourceName)
+{
+    // assimp refuses an empty buffer without saying why.
+    if (data.empty())
+        throw InputError(sourceName, 0, "mesh data is empty");
+    Assimp::Importer &importer = *context.importer_;
+    const aiScene *scene =
+        importer.ReadFileFromMemory(data.data(), data.size(), aiProcess_ValidateDataStructure, formatHint.c_str());
+    return meshOfScene(postProcess(importer, scene, sourceName), importer, sourceName, role);
+}
+
+LoadedMesh loadMesh(const std::string &path, MeshRole role)
+{
+    MeshImporter importer;
+    return loadMesh(importer, path, role);
 }
 
 LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
                               const std::string &sourceName)
 {
-    // assimp refuses an empty buffer without saying why.
-    if (data.empty())
-        throw InputError(sourceName, 0, "mesh data is empty");
-    Assimp::Importer importer;
-    const aiScene *scene =
-        importer.ReadFileFromMemory(data.data(), data.size(), aiProcess_ValidateDataStructure, formatHint.c_str());
-    return meshOfScene(postProcess(importer, scene, sourceName), importer, sourceName, role);
+    MeshImporter importer;
+    return loadMeshFromMemory(importer, data, formatHint, role, sourceName);
 }
 }  // namespace hcd

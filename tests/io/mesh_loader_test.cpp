@@ -76,6 +76,58 @@ TEST(MeshLoader, LoadsFromMemoryAsFromFiles)
     }
 }
 
+// The fuzz harness reads every input through one importer; reuse must not change what a load
+// gives, whatever was read before (errors and the two past findings included).
+TEST(MeshLoader, OneImporterLoadsAsFreshOnes)
+{
+    const std::pair<std::string, std::string> inputs[] = {
+        {"obj", kObj},
+        {"obj", "v 0 0 0\n"},
+        {"off", kOff},
+        {"off", "OFF\n4 4 0\n0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"},
+        {"ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n4 0 0\n0 4 0\n4 4 0\n"
+                "0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3"},
+        {"ply", kPly},
+        {"stl", stlText()},
+        {"stl", "solid x\n facet normal 0 0 0\n  outer loop\n   vertex 0 0"},
+        {"obj", kObj},
+        {"stl", stlText()},
+    };
+    MeshImporter importer;
+    for (int pass = 0; pass < 2; ++pass)
+        for (const auto &[format, text] : inputs)
+        {
+            std::string freshError, reusedError;
+            LoadedMesh fresh, reused;
+            try
+            {
+                fresh = loadMeshFromMemory(text, format, MeshRole::Robot3D, "mesh");
+            }
+            catch (const InputError &e)
+            {
+                freshError = e.what();
+            }
+            try
+            {
+                reused = loadMeshFromMemory(importer, text, format, MeshRole::Robot3D, "mesh");
+            }
+            catch (const InputError &e)
+            {
+                reusedError = e.what();
+            }
+            EXPECT_EQ(reusedError, freshError) << format << ": " << text;
+            EXPECT_EQ(reused.mesh.vertices, fresh.mesh.vertices) << format << ": " << text;
+            EXPECT_EQ(reused.mesh.triangles, fresh.mesh.triangles) << format << ": " << text;
+            EXPECT_EQ(reused.centeringShift, fresh.centeringShift) << format << ": " << text;
+            EXPECT_EQ(reused.skippedNonTriangles, fresh.skippedNonTriangles) << format << ": " << text;
+            EXPECT_EQ(reused.droppedDegenerate, fresh.droppedDegenerate) << format << ": " << text;
+        }
+    const std::string path = test::writeTempFile("reused.obj", kObj);
+    EXPECT_EQ(loadMesh(importer, path, MeshRole::Environment).mesh.vertices,
+              loadMesh(path, MeshRole::Environment).mesh.vertices);
+}
+
 // Found by fuzzing (tests/fuzz_corpus/mesh/regression_off_short_face.off): with a vertex line
 // missing, the faces shift by one line and the last has none; assimp's OFF reader then hands a
 // face without indices to its triangulation, which fails an assertion and aborts the process.

@@ -11,8 +11,14 @@
 
 #include "hybridcd/geometry/triangle_mesh.h"
 
+#include <memory>
 #include <string>
 #include <string_view>
+
+namespace Assimp
+{
+class Importer;
+}
 
 namespace hcd
 {
@@ -32,6 +38,25 @@ struct LoadedMesh
     std::size_t droppedDegenerate = 0;    ///< zero-area triangles, dropped after welding
 };
 
+/// What loading keeps from one mesh to the next: one assimp importer, whose construction (it
+/// instantiates every reader and post-processing step assimp has) costs more than reading a small
+/// mesh. The overloads below taking one load exactly as the one-shot functions, which make a fresh
+/// MeshImporter per call; worth it when many small meshes are read. Not thread-safe: one per thread.
+class MeshImporter
+{
+public:
+    MeshImporter();
+    ~MeshImporter();
+    MeshImporter(const MeshImporter &) = delete;
+    MeshImporter &operator=(const MeshImporter &) = delete;
+
+private:
+    friend LoadedMesh loadMesh(MeshImporter &, const std::string &, MeshRole);
+    friend LoadedMesh loadMeshFromMemory(MeshImporter &, std::string_view, const std::string &, MeshRole,
+                                         const std::string &);
+    std::unique_ptr<Assimp::Importer> importer_;
+};
+
 /// Loads any format assimp reads (COLLADA, OBJ, STL, PLY, OFF, ...). Throws InputError naming the
 /// file when it is missing, unreadable, or holds no triangle.
 LoadedMesh loadMesh(const std::string &path, MeshRole role);
@@ -43,4 +68,9 @@ LoadedMesh loadMesh(const std::string &path, MeshRole role);
 /// folder. Throws InputError when the data is empty, unreadable, or holds no triangle.
 LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
                               const std::string &sourceName);
+
+/// loadMesh and loadMeshFromMemory through the caller's importer (see MeshImporter).
+LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole role);
+LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, const std::string &formatHint,
+                              MeshRole role, const std::string &sourceName);
 }  // namespace hcd
