@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Installs the Debian 12 packages hybridcd needs, skipping apt entirely when all are present.
+# With --fuzz, also clang and its libFuzzer/sanitizer runtimes (for scripts/fuzz.sh).
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,9 @@ packages=(
   # ompl_benchmark_statistics reads the benchmark logs into SQLite.
   ompl-demos python3
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -39,11 +39,26 @@ void recordToState(const PoseRecord &r, bool planar, ompl::base::State *state)
     }
     auto *s = state->as<ompl::base::SE3StateSpace::StateType>();
     s->setXYZ(v[0], v[1], v[2]);
-    const double n = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
-    s->rotation().x = v[3] / n;
-    s->rotation().y = v[4] / n;
-    s->rotation().z = v[5] / n;
-    s->rotation().w = v[6] / n;
+    Eigen::Vector4d q(v[3], v[4], v[5], v[6]);
+    double n = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
+    // As RigidTransform::fromTranslationQuaternion: rescale when the squares over- or underflow, and
+    // take the zero quaternion as the identity, so that `check` and `check-motion` see one pose.
+    if (!(n >= 1e-150 && n <= 1e150))
+    {
+        const double largest = q.cwiseAbs().maxCoeff();
+        if (largest > 0.0)
+            q /= largest;
+        n = q.norm();
+    }
+    if (!(n > 0.0))
+    {
+        s->rotation().setIdentity();
+        return;
+    }
+    s->rotation().x = q[0] / n;
+    s->rotation().y = q[1] / n;
+    s->rotation().z = q[2] / n;
+    s->rotation().w = q[3] / n;
 }
 }  // namespace
 

@@ -5,10 +5,28 @@
 
 namespace hcd
 {
+namespace
+{
+// The norm of `v`, rescaling `v` first (direction kept, largest component +-1) when the plain
+// norm's squares over- or underflow: components beyond about 1e154 give infinity, below about
+// 1e-154 zero or lost digits (subnormal ones round to the wrong length even with stableNorm).
+template <typename Vector>
+double rescaledNorm(Vector &&v)
+{
+    const double n = v.norm();
+    if (n >= 1e-150 && n <= 1e150)
+        return n;
+    const double largest = v.cwiseAbs().maxCoeff();
+    if (largest > 0.0 && std::isfinite(largest))
+        v /= largest;
+    return v.norm();
+}
+}  // namespace
+
 RigidTransform RigidTransform::fromTranslationQuaternion(const Vec3 &t, double qw, double qx, double qy, double qz)
 {
     Eigen::Quaterniond q(qw, qx, qy, qz);
-    const double n = q.norm();
+    const double n = rescaledNorm(q.coeffs());
     if (n > 0.0 && std::isfinite(n))
         q.coeffs() /= n;
     return {q.toRotationMatrix(), t};
@@ -24,9 +42,10 @@ RigidTransform RigidTransform::fromPlanarPose(double x, double y, double yaw)
 
 RigidTransform RigidTransform::fromAxisAngle(const Vec3 &t, const Vec3 &axis, double angle)
 {
-    const double n = axis.norm();
+    Vec3 direction = axis;
+    const double n = rescaledNorm(direction);
     if (!(n > 0.0))
         return {Mat3::Identity(), t};
-    return {Eigen::AngleAxisd(angle, axis / n).toRotationMatrix(), t};
+    return {Eigen::AngleAxisd(angle, direction / n).toRotationMatrix(), t};
 }
 }  // namespace hcd

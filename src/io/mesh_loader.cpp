@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <string_view>
 #include <system_error>
 #include <utility>
 
@@ -38,12 +39,58 @@ struct Imported
     std::size_t skippedNonTriangles = 0;
 };
 
-// Imports `path` with `flags`; throws InputError naming the file when assimp fails, when the file
-// holds no geometry, or when its instanced triangles exceed the limit (counted before any copy).
-Imported import(const std::string &path, unsigned flags, const MeshLimits &limits)
+// Where the mesh comes from: a file, or a buffer (with a format hint) named `name` in errors.
+struct Source
 {
-    Assimp::Importer importer;
-    const aiScene *scene = importer.ReadFile(path, flags);
+    const std::string &name;
+    bool inMemory = false;
+    std::string_view data;
+    const std::string *formatHint = nullptr;
+};
+
+// Finishes an import made with aiProcess_ValidateDataStructure only. Three guards against
+// malformed files that otherwise reach a failed assertion in assimp's triangulation, which aborts
+// the process: validation rejects e.g. an OFF file whose last face lost its line; a face without
+// any vertex index (a PLY face list cut short reads "0 0 0" as empty faces, which assimp's
+// validation lets through when the reader left the primitive types unset) is an error here; and
+// the primitive-type flags are recomputed from the faces, since triangulation asserts that a mesh
+// flagged as holding polygons holds one. None of this changes a valid scene; the post-processing
+// that follows is OMPL.app's, as ReadFile would have applied it.
+const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, unsigned flags, const std::string &name)
+{
+    if (scene == nullptr)
+        return nullptr;
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i)
+    {
+        aiMesh *m = scene->mMeshes[i];
+        unsigned types = 0;
+        for (unsigned f = 0; f < m->mNumFaces; ++f)
+        {
+            const unsigned n = m->mFaces[f].mNumIndices;
+            if (n == 0 || m->mFaces[f].mIndices == nullptr)
+                throw InputError(name, 0, "malformed mesh: face " + std::to_string(f) + " of mesh " +
+                                              std::to_string(i) + " has no vertex index");
+            types |= n == 1 ? aiPrimitiveType_POINT
+                     : n == 2 ? aiPrimitiveType_LINE
+                     : n == 3 ? aiPrimitiveType_TRIANGLE
+                              : aiPrimitiveType_POLYGON;
+        }
+        m->mPrimitiveTypes = types;
+    }
+    return importer.ApplyPostProcessing(flags);
+}
+
+// Imports `source` with post-processing `flags`; throws InputError naming the source when assimp
+// fails, when it holds no geometry, or when its instanced triangles exceed the limit (counted
+// before any copy).
+Imported import(Assimp::Importer &importer, const Source &source, unsigned flags, const MeshLimits &limits)
+{
+    const aiScene *read =
+        source.inMemory ? importer.ReadFileFromMemory(source.data.data(), source.data.size(),
+                                                      aiProcess_ValidateDataStructure, source.formatHint->c_str())
+                        : importer.ReadFile(source.name, aiProcess_ValidateDataStructure);
+    const aiScene *scene = postProcess(importer, read, flags, source.name);
+    const std::string &path = source.name;
     if (scene == nullptr)
         throw InputError(path, 0, std::string("cannot read mesh: ") + importer.GetErrorString());
     if (!scene->HasMeshes() || scene->mRootNode == nullptr)
@@ -95,30 +142,16 @@ double extentOf(const std::vector<aiVector3D> &corners)
     }
     return corners.empty() ? 0.0 : (hi - lo).norm();
 }
-}  // namespace
 
-LoadedMesh loadMesh(const std::string &path, MeshRole role, const MeshLimits &limits)
+// The mesh of `source`, placed for `role`.
+LoadedMesh loadFrom(Assimp::Importer &importer, const Source &source, MeshRole role, const MeshLimits &limits)
 {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw InputError(path, 0, "is a folder, not a mesh file");
-    if (!std::ifstream(path).good())
-        throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
-    // Refused before assimp reads it: assimp holds the whole file and more in memory.
-    const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-    const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
-    if (!ec && bytes > maxBytes)
-        throw InputError(path, 0,
-                         "the mesh file has " + std::to_string(bytes) + " bytes, above the limit of " +
-                             std::to_string(maxBytes) + " (" + std::to_string(limits.bytesPerTriangle) +
-                             " bytes for each of the " + std::to_string(limits.maxTriangles) +
-                             " triangles allowed per mesh; the command line's --max-triangles raises it)");
-
+    const std::string &path = source.name;
     const unsigned joined = aiProcess_GenNormals | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                             aiProcess_SortByPType | aiProcess_OptimizeGraph;
-    Imported imported = import(path, joined, limits);
+    Imported imported = import(importer, source, joined, limits);
     if (!imported.corners.empty() && extentOf(imported.corners) < kTinyMeshExtent)
-        imported = import(path, joined & ~unsigned(aiProcess_JoinIdenticalVertices), limits);
+        imported = import(importer, source, joined & ~unsigned(aiProcess_JoinIdenticalVertices), limits);
 
     LoadedMesh out;
     out.skippedNonTriangles = imported.skippedNonTriangles;
@@ -156,5 +189,56 @@ LoadedMesh loadMesh(const std::string &path, MeshRole role, const MeshLimits &li
         throw InputError(path, 0, "every triangle of the mesh is degenerate (zero area)");
     out.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
     return out;
+}
+}  // namespace
+
+MeshImporter::MeshImporter() : importer_(std::make_unique<Assimp::Importer>()) {}
+
+MeshImporter::~MeshImporter() = default;
+
+LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole role, const MeshLimits &limits)
+{
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path, 0, "is a folder, not a mesh file");
+    if (!std::ifstream(path).good())
+        throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
+    // Refused before assimp reads it: assimp holds the whole file and more in memory.
+    const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+    const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
+    if (!ec && bytes > maxBytes)
+        throw InputError(path, 0,
+                         "the mesh file has " + std::to_string(bytes) + " bytes, above the limit of " +
+                             std::to_string(maxBytes) + " (" + std::to_string(limits.bytesPerTriangle) +
+                             " bytes for each of the " + std::to_string(limits.maxTriangles) +
+                             " triangles allowed per mesh; the command line's --max-triangles raises it)");
+    return loadFrom(*importer.importer_, Source{path}, role, limits);
+}
+
+LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, const std::string &formatHint,
+                              MeshRole role, const std::string &sourceName, const MeshLimits &limits)
+{
+    // assimp refuses an empty buffer without saying why.
+    if (data.empty())
+        throw InputError(sourceName, 0, "mesh data is empty");
+    const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
+    if (data.size() > maxBytes)
+        throw InputError(sourceName, 0,
+                         "the mesh data has " + std::to_string(data.size()) + " bytes, above the limit of " +
+                             std::to_string(maxBytes));
+    return loadFrom(*importer.importer_, Source{sourceName, true, data, &formatHint}, role, limits);
+}
+
+LoadedMesh loadMesh(const std::string &path, MeshRole role, const MeshLimits &limits)
+{
+    MeshImporter importer;
+    return loadMesh(importer, path, role, limits);
+}
+
+LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
+                              const std::string &sourceName, const MeshLimits &limits)
+{
+    MeshImporter importer;
+    return loadMeshFromMemory(importer, data, formatHint, role, sourceName, limits);
 }
 }  // namespace hcd

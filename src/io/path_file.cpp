@@ -4,6 +4,7 @@
 #include "hybridcd/io/input_error.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -14,15 +15,23 @@ namespace hcd
 {
 namespace
 {
-// Reads every non-blank, non-comment line as at least `columns` finite numbers.
-std::vector<PoseRecord> readRows(const std::string &path, std::size_t columns, const char *what)
+std::string readText(const std::string &path)
 {
     // A folder opens as an empty stream on Linux: without this check it would read as no poses.
     if (std::filesystem::is_directory(path))
         throw InputError(path, 0, "is a folder, not a pose file");
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in)
         throw InputError(path, 0, "cannot open file (missing or unreadable)");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// Reads every non-blank, non-comment line as at least `columns` finite numbers.
+std::vector<PoseRecord> parseRows(std::string_view text, const std::string &path, std::size_t columns, const char *what)
+{
+    std::istringstream in{std::string(text)};
     std::vector<PoseRecord> rows;
     std::string line;
     int lineNo = 0;
@@ -38,17 +47,11 @@ std::vector<PoseRecord> readRows(const std::string &path, std::size_t columns, c
         row.line = lineNo;
         while (row.values.size() < columns && words >> word)
         {
-            double v = 0.0;
-            std::size_t used = 0;
-            try
-            {
-                v = std::stod(word, &used);
-            }
-            catch (const std::exception &)
-            {
-                used = 0;
-            }
-            if (used != word.size())
+            // strtod, not stod: stod refuses subnormal numbers (it throws on ERANGE), yet writePoses
+            // writes them and a path must read back. Overflow gives infinity, refused below.
+            char *end = nullptr;
+            const double v = std::strtod(word.c_str(), &end);
+            if (end != word.c_str() + word.size())
                 throw InputError(path, lineNo, "'" + word + "' is not a number");
             if (!std::isfinite(v))
                 throw InputError(path, lineNo, "'" + word + "' is not a finite number");
@@ -94,24 +97,35 @@ RigidTransform poseToTransform(const PoseRecord &pose, bool planar)
 
 std::vector<PoseRecord> readPoses(const std::string &path, bool planar)
 {
-    std::vector<PoseRecord> rows =
-        readRows(path, poseColumns(planar), planar ? "a planar pose (x y theta)" : "a pose (x y z qx qy qz qw)");
+    return parsePoses(readText(path), path, planar);
+}
+
+std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sourceName, bool planar)
+{
+    std::vector<PoseRecord> rows = parseRows(text, sourceName, poseColumns(planar),
+                                             planar ? "a planar pose (x y theta)" : "a pose (x y z qx qy qz qw)");
     if (!planar)
         for (PoseRecord &row : rows)
-            normaliseQuaternion(row, 3, path);
+            normaliseQuaternion(row, 3, sourceName);
     return rows;
 }
 
 std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar)
 {
+    return parseMotions(readText(path), path, planar);
+}
+
+std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view text, const std::string &sourceName,
+                                                            bool planar)
+{
     const std::size_t n = poseColumns(planar);
     std::vector<std::pair<PoseRecord, PoseRecord>> motions;
-    for (PoseRecord &row : readRows(path, 2 * n, "a motion (two poses)"))
+    for (PoseRecord &row : parseRows(text, sourceName, 2 * n, "a motion (two poses)"))
     {
         if (!planar)
         {
-            normaliseQuaternion(row, 3, path);
-            normaliseQuaternion(row, n + 3, path);
+            normaliseQuaternion(row, 3, sourceName);
+            normaliseQuaternion(row, n + 3, sourceName);
         }
         PoseRecord a{{row.values.begin(), row.values.begin() + long(n)}, row.line};
         PoseRecord b{{row.values.begin() + long(n), row.values.begin() + long(2 * n)}, row.line};

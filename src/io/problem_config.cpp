@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 namespace hcd
 {
@@ -43,16 +45,13 @@ public:
 
     double number(const std::string &key, const Entry &e) const
     {
-        try
-        {
-            std::size_t used = 0;
-            const double v = std::stod(e.value, &used);
-            if (trim(e.value.substr(used)).empty() && std::isfinite(v))
-                return v;
-        }
-        catch (const std::exception &)
-        {
-        }
+        // strtod, not stod: stod refuses subnormal numbers (it throws on ERANGE).
+        const char *begin = e.value.c_str();
+        char *end = nullptr;
+        const double v = std::strtod(begin, &end);
+        if (end != begin && trim(std::string(end, e.value.size() - std::size_t(end - begin))).empty() &&
+            std::isfinite(v))
+            return v;
         throw InputError(path_, e.line, "'" + key + "' needs a finite number, got '" + e.value + "'");
     }
 
@@ -124,10 +123,17 @@ ProblemConfig readProblemConfig(const std::string &path)
         throw InputError(path, 0, "is a folder, not a problem file (.cfg)");
     if (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path))
         throw InputError(path, 0, "is not a regular file; a problem file (.cfg) is expected");
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in)
         throw InputError(path, 0, "cannot open problem file (missing or unreadable)");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseProblemConfig(text.str(), path);
+}
 
+ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
+{
+    std::istringstream in{std::string(text)};
     ProblemConfig cfg;
     cfg.path = path;
     Parser parser(path);

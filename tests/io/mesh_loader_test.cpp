@@ -50,6 +50,120 @@ TEST(MeshLoader, ReadsCommonFormats)
     }
 }
 
+TEST(MeshLoader, LoadsFromMemoryAsFromFiles)
+{
+    const std::pair<std::string, std::string> files[] = {
+        {"obj", kObj}, {"off", kOff}, {"ply", kPly}, {"stl", stlText()}};
+    for (const auto &[format, text] : files)
+    {
+        const LoadedMesh fromFile = loadMesh(test::writeTempFile("memory." + format, text), MeshRole::Robot3D);
+        const LoadedMesh fromMemory = loadMeshFromMemory(text, format, MeshRole::Robot3D, "memory");
+        EXPECT_EQ(fromMemory.mesh->vertices, fromFile.mesh->vertices) << format;
+        EXPECT_EQ(fromMemory.mesh->triangles, fromFile.mesh->triangles) << format;
+        EXPECT_EQ(fromMemory.centeringShift, fromFile.centeringShift) << format;
+    }
+    for (const std::string &bad : {std::string(), std::string("v 0 0 0\n")})
+    {
+        try
+        {
+            loadMeshFromMemory(bad, "obj", MeshRole::Environment, "buffer.obj");
+            FAIL() << "no error for '" << bad << "'";
+        }
+        catch (const InputError &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("buffer.obj: "), std::string::npos) << e.what();
+        }
+    }
+}
+
+// The fuzz harness reads every input through one importer; reuse must not change what a load
+// gives, whatever was read before (errors and the two past findings included).
+TEST(MeshLoader, OneImporterLoadsAsFreshOnes)
+{
+    const std::pair<std::string, std::string> inputs[] = {
+        {"obj", kObj},
+        {"obj", "v 0 0 0\n"},
+        {"off", kOff},
+        {"off", "OFF\n4 4 0\n0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"},
+        {"ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n4 0 0\n0 4 0\n4 4 0\n"
+                "0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3"},
+        {"ply", kPly},
+        {"stl", stlText()},
+        {"stl", "solid x\n facet normal 0 0 0\n  outer loop\n   vertex 0 0"},
+        {"obj", kObj},
+        {"stl", stlText()},
+    };
+    MeshImporter importer;
+    for (int pass = 0; pass < 2; ++pass)
+        for (const auto &[format, text] : inputs)
+        {
+            std::string freshError, reusedError;
+            LoadedMesh fresh, reused;
+            try
+            {
+                fresh = loadMeshFromMemory(text, format, MeshRole::Robot3D, "mesh");
+            }
+            catch (const InputError &e)
+            {
+                freshError = e.what();
+            }
+            try
+            {
+                reused = loadMeshFromMemory(importer, text, format, MeshRole::Robot3D, "mesh");
+            }
+            catch (const InputError &e)
+            {
+                reusedError = e.what();
+            }
+            EXPECT_EQ(reusedError, freshError) << format << ": " << text;
+            EXPECT_EQ(reused.mesh->vertices, fresh.mesh->vertices) << format << ": " << text;
+            EXPECT_EQ(reused.mesh->triangles, fresh.mesh->triangles) << format << ": " << text;
+            EXPECT_EQ(reused.centeringShift, fresh.centeringShift) << format << ": " << text;
+            EXPECT_EQ(reused.skippedNonTriangles, fresh.skippedNonTriangles) << format << ": " << text;
+            EXPECT_EQ(reused.droppedDegenerate, fresh.droppedDegenerate) << format << ": " << text;
+        }
+    const std::string path = test::writeTempFile("reused.obj", kObj);
+    EXPECT_EQ(loadMesh(importer, path, MeshRole::Environment).mesh->vertices,
+              loadMesh(path, MeshRole::Environment).mesh->vertices);
+}
+
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_off_short_face.off): with a vertex line
+// missing, the faces shift by one line and the last has none; assimp's OFF reader then hands a
+// face without indices to its triangulation, which fails an assertion and aborts the process.
+// Validating the scene first turns that into an error naming the file.
+TEST(MeshLoader, MalformedOffIsAnErrorNotAnAbort)
+{
+    const std::string text = "OFF\n4 4 0\n0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const std::string path = test::writeTempFile("short_face.off", text);
+    EXPECT_THROW(loadMesh(path, MeshRole::Robot3D), InputError);
+    EXPECT_THROW(loadMeshFromMemory(text, "off", MeshRole::Robot3D, "short_face.off"), InputError);
+}
+
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_ply_truncated_faces.ply): in a PLY file
+// whose vertex list lost a line, the face list reads "0 0 0" as two faces without any vertex index.
+// assimp's validation lets them through (the reader leaves the primitive types unset), they count
+// as polygons, and the triangulation fails an assertion and aborts. The loader now rejects a face
+// without indices before post-processing.
+TEST(MeshLoader, PlyFaceWithoutIndicesIsAnErrorNotAnAbort)
+{
+    const std::string text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                             "0 0 0\n4 0 0\n0 4 0\n4 4 0\n0 0 00 4 0\n0 0 4\n3 0 2 1\n3 0 1 3";
+    try
+    {
+        loadMeshFromMemory(text, "ply", MeshRole::Environment, "truncated.ply");
+        FAIL() << "no error";
+    }
+    catch (const InputError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("truncated.ply: malformed mesh: face 0 of mesh 0 has no vertex index"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(loadMesh(test::writeTempFile("truncated.ply", text), MeshRole::Environment), InputError);
+}
+
 TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
 {
     const std::string path = test::writeTempFile("robot.obj", kObj);

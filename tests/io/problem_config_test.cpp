@@ -128,6 +128,28 @@ TEST(ProblemConfig, ErrorsNameFileAndLine)
     EXPECT_EQ(errorOf(kMinimal), "");
 }
 
+TEST(ProblemConfig, TextAndFileReadersAgree)
+{
+    const std::string path = test::writeTempFile("text.cfg", std::string(kMinimal) + "start.theta = 1e-310\n");
+    const ProblemConfig fromFile = readProblemConfig(path);
+    const ProblemConfig fromText = parseProblemConfig(std::string(kMinimal) + "start.theta = 1e-310\n", path);
+    EXPECT_EQ(fromText.robotMesh, fromFile.robotMesh);
+    EXPECT_EQ(fromText.name, "text");
+    EXPECT_EQ(fromText.start.theta, 1e-310);  // subnormal numbers are numbers
+    EXPECT_EQ(fromFile.start.theta, 1e-310);
+    EXPECT_EQ(fromText.goal.z, 6.0);
+    try
+    {
+        parseProblemConfig("[problem]\nrobot = r.obj\nstart.x = 1e999\n", "memory.cfg");
+        FAIL() << "no error for an overflowing number";
+    }
+    catch (const InputError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("memory.cfg:3: 'start.x' needs a finite number"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(ProblemConfig, MissingFileIsAnInputError)
 {
     EXPECT_THROW(readProblemConfig("/nonexistent/problem.cfg"), InputError);

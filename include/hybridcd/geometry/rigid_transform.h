@@ -20,13 +20,16 @@ struct RigidTransform
     static RigidTransform identity() { return {}; }
 
     /// SE3 pose as OMPL.app builds it: translation (x, y, z) times the unit quaternion (w, x, y, z).
-    /// The quaternion is normalised here so that slightly denormalised input stays rigid.
+    /// The quaternion is normalised here so that slightly denormalised input stays rigid; any finite
+    /// non-zero quaternion gives a rotation, however large or small its components, and the zero
+    /// quaternion gives the identity.
     static RigidTransform fromTranslationQuaternion(const Vec3 &t, double qw, double qx, double qy, double qz);
 
     /// SE2 pose as OMPL.app builds it: translation (x, y, 0) times a rotation by yaw about +z.
     static RigidTransform fromPlanarPose(double x, double y, double yaw);
 
-    /// Rotation by `angle` radians about `axis` (need not be unit length; a zero axis means no rotation).
+    /// Rotation by `angle` radians about `axis` (need not be unit length, any finite non-zero length
+    /// works; a zero axis means no rotation).
     static RigidTransform fromAxisAngle(const Vec3 &t, const Vec3 &axis, double angle);
 
     /// Applies the transform to a point. Every checker maps robot vertices through this one

@@ -18,6 +18,12 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
+
+namespace Assimp
+{
+class Importer;
+}
 
 namespace hcd
 {
@@ -53,8 +59,40 @@ struct LoadedMesh
     std::size_t droppedDegenerate = 0;    ///< zero-area triangles, dropped after welding
 };
 
+/// What loading keeps from one mesh to the next: one assimp importer, whose construction (it
+/// instantiates every reader and post-processing step assimp has) costs more than reading a small
+/// mesh. The overloads below taking one load exactly as the one-shot functions, which make a fresh
+/// MeshImporter per call; worth it when many small meshes are read. Not thread-safe: one per thread.
+class MeshImporter
+{
+public:
+    MeshImporter();
+    ~MeshImporter();
+    MeshImporter(const MeshImporter &) = delete;
+    MeshImporter &operator=(const MeshImporter &) = delete;
+
+private:
+    friend LoadedMesh loadMesh(MeshImporter &, const std::string &, MeshRole, const MeshLimits &);
+    friend LoadedMesh loadMeshFromMemory(MeshImporter &, std::string_view, const std::string &, MeshRole,
+                                         const std::string &, const MeshLimits &);
+    std::unique_ptr<Assimp::Importer> importer_;
+};
+
 /// Loads any format assimp reads (COLLADA, OBJ, STL, PLY, OFF, ...). Throws InputError naming the
 /// file when it is missing, a folder, unreadable, beyond `limits`, holds no triangle, or only
 /// degenerate ones. Non-manifold meshes load: their closed components are solids, the rest surfaces.
 LoadedMesh loadMesh(const std::string &path, MeshRole role, const MeshLimits &limits = {});
+
+/// Loads a mesh file's contents held in memory, with the same post-processing, placement, limits
+/// and errors as loadMesh. `formatHint` is the file extension assimp picks its reader by ("obj",
+/// "dae", ...; assimp sniffs the content when it is empty or unknown); `sourceName` names the
+/// data in errors. Files the data refers to (materials, textures) are looked up in the current
+/// folder. Throws InputError when the data is empty, unreadable, or holds no triangle.
+LoadedMesh loadMeshFromMemory(std::string_view data, const std::string &formatHint, MeshRole role,
+                              const std::string &sourceName, const MeshLimits &limits = {});
+
+/// loadMesh and loadMeshFromMemory through the caller's importer (see MeshImporter).
+LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole role, const MeshLimits &limits = {});
+LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, const std::string &formatHint,
+                              MeshRole role, const std::string &sourceName, const MeshLimits &limits = {});
 }  // namespace hcd

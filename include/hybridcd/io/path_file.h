@@ -6,6 +6,8 @@
 
 #include <iosfwd>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace hcd
@@ -34,8 +36,15 @@ RigidTransform poseToTransform(const PoseRecord &pose, bool planar);
 /// quaternions are normalised. A folder or a file that cannot be opened is an InputError too.
 std::vector<PoseRecord> readPoses(const std::string &path, bool planar);
 
-/// Reads motions: two poses per line (14 numbers in 3D, 6 in the plane).
+/// Parses pose lines held in memory, as readPoses does a file; errors name `sourceName`.
+std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sourceName, bool planar);
+
+/// Reads motions: two poses per line (14 numbers in 3D, 6 in the plane). Throws as readPoses does.
 std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar);
+
+/// Parses motion lines held in memory, as readMotions does a file; errors name `sourceName`.
+std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view text, const std::string &sourceName,
+                                                            bool planar);
 
 /// Writes one pose per line with full round-trip precision.
 void writePoses(std::ostream &out, const std::vector<std::vector<double>> &poses);

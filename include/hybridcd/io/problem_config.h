@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hcd
@@ -56,4 +57,9 @@ struct ProblemConfig
 /// limits, a rotation axis of zero length, and missing required keys. Unknown keys are not errors:
 /// each adds a line to ProblemConfig::warnings.
 ProblemConfig readProblemConfig(const std::string &path);
+
+/// Parses the text of a .cfg as readProblemConfig does a file. `path` is where the text came from:
+/// errors name it, the problem name defaults to its stem, and mesh paths are resolved against its
+/// folder (nothing is opened). Throws InputError as readProblemConfig does.
+ProblemConfig parseProblemConfig(std::string_view text, const std::string &path);
 }  // namespace hcd

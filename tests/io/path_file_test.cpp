@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "support/test_support.h"
+
+#include "hybridcd/io/input_error.h"
+#include "hybridcd/io/path_file.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+using namespace hcd;
+
+namespace
+{
+void expectRotation(const RigidTransform &t, const Mat3 &expected, const std::string &what)
+{
+    EXPECT_TRUE(t.isFinite()) << what;
+    EXPECT_LT((t.rotation - expected).cwiseAbs().maxCoeff(), 1e-12) << what << "\n" << t.rotation;
+}
+
+// A quarter turn about x, and the turn of the quaternion (0.5, 0.5, 0.5, 0.5): x -> y -> z -> x.
+Mat3 quarterTurnX() { return (Mat3() << 1, 0, 0, 0, 0, -1, 0, 1, 0).finished(); }
+Mat3 cyclicTurn() { return (Mat3() << 0, 0, 1, 1, 0, 0, 0, 1, 0).finished(); }
+}  // namespace
+
+TEST(PathFile, FileAndTextReadersAgree)
+{
+    const std::string text = "1 2 3 0 0 0 1 extra\n\n# comment\n4 5 6 0 0 1 0 # pose\n";
+    const std::string path = test::writeTempFile("poses.path", text);
+    const auto fromFile = readPoses(path, false), fromText = parsePoses(text, path, false);
+    ASSERT_EQ(fromFile.size(), 2u);
+    ASSERT_EQ(fromText.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+        EXPECT_EQ(fromFile[i].values, fromText[i].values);
+        EXPECT_EQ(fromFile[i].line, fromText[i].line);
+    }
+    EXPECT_EQ(fromText[1].line, 4);
+    const auto motions = parseMotions("0 0 0 1 2 3\n", "m.txt", true);
+    ASSERT_EQ(motions.size(), 1u);
+    EXPECT_EQ(motions[0].second.values, (std::vector<double>{1, 2, 3}));
+}
+
+TEST(PathFile, ErrorsNameTheSourceAndLine)
+{
+    try
+    {
+        parsePoses("0 0 0\n1 2\n", "states.txt", true);
+        FAIL() << "no error for a short line";
+    }
+    catch (const InputError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("states.txt:2:"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(parseMotions("1 2 3 4 5 nan\n", "m.txt", true), InputError);
+    EXPECT_THROW(parsePoses("1 2 1e999\n", "p.txt", true), InputError);
+}
+
+// Caught by the pose harness's rigidity check (tests/fuzz_corpus/pose/se3_extreme_quaternions.txt):
+// the squares of quaternion components beyond about 1e154 overflowed, so the
+// quaternion was not normalised and the "rotation" had infinite entries; components below about
+// 1e-154 squared to zero and gave the identity instead of their rotation.
+TEST(PathFile, ExtremeQuaternionsStillGiveTheirRotation)
+{
+    const auto poses = parsePoses("1 2 3 1e200 1e200 1e200 1e200\n1 2 3 1e-200 0 0 1e-200\n"
+                                  "1 2 3 5e-324 0 0 5e-324\n1 2 3 1e154 0 0 1e154\n",
+                                  "extreme.path", false);
+    ASSERT_EQ(poses.size(), 4u);
+    expectRotation(poseToTransform(poses[0], false), cyclicTurn(), "components 1e200");
+    expectRotation(poseToTransform(poses[1], false), quarterTurnX(), "components 1e-200");
+    expectRotation(poseToTransform(poses[2], false), quarterTurnX(), "subnormal components");
+    expectRotation(poseToTransform(poses[3], false), quarterTurnX(), "components 1e154");
+    // The zero quaternion stays the identity, as before.
+    expectRotation(RigidTransform::fromTranslationQuaternion(Vec3::Zero(), 0, 0, 0, 0), Mat3::Identity(), "zero");
+}
+
+// The same overflow in the axis of a .cfg start or goal gave a non-orthonormal matrix.
+TEST(PathFile, ExtremeAxesStillGiveTheirRotation)
+{
+    const double quarter = 1.5707963267948966;
+    expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(1e300, 0, 0), quarter), quarterTurnX(), "axis 1e300");
+    expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(1e-300, 0, 0), quarter), quarterTurnX(),
+                   "axis 1e-300");
+    expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3::Zero(), quarter), Mat3::Identity(), "zero axis");
+}
+
+// Caught by the path harness's round-trip check (tests/fuzz_corpus/path/regression_hex_subnormal.path):
+// "0x1p-1074" was read, but writePoses writes it as 4.9406564584124654e-324,
+// which std::stod refuses (it throws on underflow), so a written path did not read back.
+TEST(PathFile, SubnormalNumbersAreNumbers)
+{
+    const auto poses = parsePoses("0x1p-1074 4.9406564584124654e-324 1e-310\n", "tiny.path", true);
+    ASSERT_EQ(poses.size(), 1u);
+    EXPECT_EQ(poses[0].values[0], poses[0].values[1]);
+    EXPECT_GT(poses[0].values[0], 0.0);
+    EXPECT_EQ(poses[0].values[2], 1e-310);
+}
+
+TEST(PathFile, WrittenPosesReadBackBitForBit)
+{
+    const std::vector<std::vector<double>> poses = {{-0.0, 4.9406564584124654e-324, 1.7976931348623157e308},
+                                                    {0.1, 1.0 / 3.0, -2.5e-300}};
+    std::ostringstream out;
+    writePoses(out, poses);
+    const auto back = parsePoses(out.str(), "written.path", true);
+    ASSERT_EQ(back.size(), poses.size());
+    for (std::size_t i = 0; i < poses.size(); ++i)
+        for (std::size_t k = 0; k < 3; ++k)
+        {
+            EXPECT_EQ(back[i].values[k], poses[i][k]);
+            EXPECT_EQ(std::signbit(back[i].values[k]), std::signbit(poses[i][k]));
+        }
+}
