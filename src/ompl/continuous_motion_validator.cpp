@@ -34,7 +34,7 @@ std::uint64_t reverseBits(std::uint64_t i, unsigned bits)
 // The verdict path's raked collision checks: about one per kRakeStride of OMPL's samples (rounded
 // to a power of two); certification then starts from intervals spanning kStartGroup raked steps.
 // Measured with bench/motion_comparison.cpp (bench/README.md, section 3).
-constexpr unsigned kRakeStride = 4;
+constexpr unsigned kRakeStride = 8;
 constexpr unsigned kStartGroup = 1;
 }  // namespace
 
