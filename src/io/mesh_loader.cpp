@@ -7,7 +7,10 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
+#include <iterator>
 
 namespace hcd
 {
@@ -58,6 +61,29 @@ const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, con
         m->mPrimitiveTypes = types;
     }
     return importer.ApplyPostProcessing(kPostProcessing);
+}
+
+// assimp 5.2's PLY reader never returns on a header without "end_header": it keeps asking for
+// the next line past the end of the data (found by fuzzing,
+// tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply). Data that goes to that reader, by its
+// format (`format` is the extension or hint) or by starting with "ply", is refused before import.
+void rejectPlyWithoutHeaderEnd(std::string_view data, std::string format, const std::string &path)
+{
+    std::transform(format.begin(), format.end(), format.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const auto first = data.find_first_not_of(" \t\r\n");
+    const bool ply = format == "ply" || (first != std::string_view::npos && data.substr(first, 3) == "ply");
+    if (ply && data.find("end_header") == std::string_view::npos)
+        throw InputError(path, 0, "malformed PLY file: its header has no end_header line");
+}
+
+std::string extensionOf(const std::string &path)
+{
+    const auto dot = path.find_last_of('.');
+    const auto slash = path.find_last_of("/\\");
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+        return {};
+    return path.substr(dot + 1);
 }
 
 // The triangles of an imported scene, placed for `role`; `path` names the source in errors.
@@ -131,6 +157,11 @@ LoadedMesh loadMesh(MeshImporter &context, const std::string &path, MeshRole rol
 {
     if (!std::ifstream(path).good())
         throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
+    {
+        std::ifstream in(path, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        rejectPlyWithoutHeaderEnd(bytes, extensionOf(path), path);
+    }
     Assimp::Importer &importer = *context.importer_;
     return meshOfScene(postProcess(importer, importer.ReadFile(path, aiProcess_ValidateDataStructure), path), importer,
                        path, role);
@@ -142,6 +173,7 @@ LoadedMesh loadMeshFromMemory(MeshImporter &context, std::string_view data, cons
     // assimp refuses an empty buffer without saying why.
     if (data.empty())
         throw InputError(sourceName, 0, "mesh data is empty");
+    rejectPlyWithoutHeaderEnd(data, formatHint, sourceName);
     Assimp::Importer &importer = *context.importer_;
     const aiScene *scene =
         importer.ReadFileFromMemory(data.data(), data.size(), aiProcess_ValidateDataStructure, formatHint.c_str());
