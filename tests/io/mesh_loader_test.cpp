@@ -177,7 +177,7 @@ TEST(MeshLoader, PlyWithoutHeaderEndIsAnErrorNotAHang)
     // With the line, the same triangle loads.
     std::string fixed = text;
     fixed.replace(fixed.find("en 0\nvd_header"), 14, "end_header");
-    EXPECT_EQ(loadMeshFromMemory(fixed, "ply", MeshRole::Environment, "end.ply").mesh.triangleCount(), 1u);
+    EXPECT_EQ(loadMeshFromMemory(fixed, "ply", MeshRole::Environment, "end.ply").mesh->triangleCount(), 1u);
 }
 
 TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
