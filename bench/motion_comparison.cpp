@@ -2,10 +2,12 @@
 // Per-motion comparison: the same random motions (fixed seed; valid start, end within the range a
 // sampling planner would use) through hybridcd's continuous validator and OMPL's discrete validator
 // at its default resolution, with hybridcd's and with FCL's state checker. Reports the median time
-// per motion and how many motions each discrete validator accepts although they touch an obstacle
+// per motion (median and mean) and how many motions each discrete validator accepts although they touch an obstacle
 // (the continuous validator rejects them; brute force at 20x OMPL's resolution confirms contact).
 //
-//   hybridcd_bench_motions [--motions N] [--seed S] PROBLEM.cfg...
+//   hybridcd_bench_motions [--motions N] [--seed S] [--no-touching] PROBLEM.cfg...
+//
+// --no-touching skips the brute-force pass (the last column then reads "-"), for quick timing runs.
 #include "bench_support.h"
 
 #include "hybridcd/fcl/fcl_checker.h"
@@ -28,8 +30,14 @@ namespace ob = ompl::base;
 namespace
 {
 
+struct Timing
+{
+    double median = 0.0, mean = 0.0;
+    std::vector<char> valid;
+};
+
 template <class Check>
-std::pair<double, std::vector<char>> timeAll(const std::vector<std::pair<ob::State *, ob::State *>> &motions, const Check &check)
+Timing timeAll(const std::vector<std::pair<ob::State *, ob::State *>> &motions, const Check &check)
 {
     std::vector<double> us;
     std::vector<char> valid;
@@ -39,7 +47,10 @@ std::pair<double, std::vector<char>> timeAll(const std::vector<std::pair<ob::Sta
         valid.push_back(check(a, b));
         us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
     }
-    return {median(us), valid};
+    double sum = 0.0;
+    for (double t : us)
+        sum += t;
+    return {median(us), us.empty() ? 0.0 : sum / double(us.size()), std::move(valid)};
 }
 }  // namespace
 
@@ -47,12 +58,15 @@ int main(int argc, char **argv)
 {
     std::size_t count = 2000;
     std::uint_fast32_t seed = 1;
+    bool touchingPass = true;
     std::vector<std::string> problems;
     for (int i = 1; i < argc; ++i)
     {
         const std::string a = argv[i];
         if (a == "--motions" && i + 1 < argc)
             count = std::stoul(argv[++i]);
+        else if (a == "--no-touching")
+            touchingPass = false;
         else if (a == "--seed" && i + 1 < argc)
             seed = std::uint_fast32_t(std::stoul(argv[++i]));
         else
@@ -61,8 +75,8 @@ int main(int argc, char **argv)
     registerFclChecker();
     ompl::RNG::setSeed(seed);
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-    std::cout << "| problem | validator | state checker | median us/motion | vs discrete+fcl | accepted | "
-                 "accepted but touching |\n|---|---|---|---:|---:|---:|---:|\n";
+    std::cout << "| problem | validator | state checker | median us/motion | vs discrete+fcl | mean us/motion | "
+                 "vs discrete+fcl | accepted | accepted but touching |\n|---|---|---|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string &cfg : problems)
     {
         const LoadedProblem problem = loadProblem(cfg);
@@ -101,6 +115,8 @@ int main(int argc, char **argv)
         std::vector<char> touching;
         for (const auto &[a, b] : motions)
         {
+            if (!touchingPass)
+                break;
             const unsigned n = 20 * std::max(1u, si->getStateSpace()->validSegmentCount(a, b));
             bool hit = false;
             for (unsigned k = 0; k <= n && !hit; ++k)
@@ -111,16 +127,18 @@ int main(int argc, char **argv)
             touching.push_back(hit);
         }
         si->freeState(s);
-        const auto row = [&](const char *validator, const char *checker, const std::pair<double, std::vector<char>> &r) {
+        const auto row = [&](const char *validator, const char *checker, const Timing &r) {
             std::size_t accepted = 0, wrong = 0;
             for (std::size_t i = 0; i < motions.size(); ++i)
             {
-                accepted += r.second[i];
-                wrong += r.second[i] && touching[i];
+                accepted += r.valid[i];
+                wrong += touchingPass && r.valid[i] && touching[i];
             }
             std::cout << std::fixed << std::setprecision(1) << "| " << problem.config.name << " | " << validator << " | "
-                      << checker << " | " << r.first << " | " << std::setprecision(2) << r.first / discreteFcl.first
-                      << " | " << accepted << " | " << wrong << " |\n";
+                      << checker << " | " << r.median << " | " << std::setprecision(2) << r.median / discreteFcl.median
+                      << " | " << std::setprecision(1) << r.mean << " | " << std::setprecision(2)
+                      << r.mean / discreteFcl.mean << " | " << accepted << " | "
+                      << (touchingPass ? std::to_string(wrong) : std::string("-")) << " |\n";
         };
         row("continuous", "obb", continuous);
         row("discrete", "obb", discreteObb);

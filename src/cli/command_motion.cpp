@@ -64,7 +64,8 @@ void recordToState(const PoseRecord &r, bool planar, ompl::base::State *state)
 
 int runCheckMotion(const std::vector<std::string> &args)
 {
-    const CommandLine cl(args, withCommonOptions({"motions", "checker", "contact-tolerance"}), {"surface-only"});
+    const CommandLine cl(args, withCommonOptions({"motions", "checker", "contact-tolerance"}),
+                         {"surface-only", "verdict-only"});
     if (!cl.has("motions"))
         throw UsageError("check-motion needs --motions FILE");
     // A fraction of the motion: zero would bisect without end, more than 1 says nothing.
@@ -81,6 +82,9 @@ int runCheckMotion(const std::vector<std::string> &args)
     auto validator = std::dynamic_pointer_cast<ContinuousMotionValidator>(si->getMotionValidator());
     validator->setContactTolerance(contactTolerance);
     validator->setApplyBounds(false);  // as in `check`, only collisions decide
+    // Verdict only: OMPL's two-state checkMotion, which stops at the first contact it sees and
+    // never brackets it (what a planner pays for a motion it does not extend along).
+    const bool verdictOnly = cl.has("verdict-only");
 
     ompl::base::State *a = si->allocState(), *b = si->allocState(), *last = si->allocState();
     std::ostringstream out;
@@ -92,7 +96,13 @@ int runCheckMotion(const std::vector<std::string> &args)
         recordToState(from, problem.config.planar, a);
         recordToState(to, problem.config.planar, b);
         std::pair<ompl::base::State *, double> lastValid{last, 0.0};
-        if (validator->checkMotion(a, b, lastValid))
+        if (verdictOnly)
+        {
+            const bool isFree = validator->checkMotion(a, b);
+            free += isFree ? 1 : 0;
+            out << (isFree ? "1\n" : "0\n");
+        }
+        else if (validator->checkMotion(a, b, lastValid))
         {
             ++free;
             out << "1\n";

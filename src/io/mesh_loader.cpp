@@ -7,8 +7,11 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string_view>
 #include <system_error>
@@ -78,6 +81,29 @@ const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, uns
         m->mPrimitiveTypes = types;
     }
     return importer.ApplyPostProcessing(flags);
+}
+
+// assimp 5.2's PLY reader never returns on a header without "end_header": it keeps asking for
+// the next line past the end of the data (found by fuzzing,
+// tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply). Data that goes to that reader, by its
+// format (`format` is the extension or hint) or by starting with "ply", is refused before import.
+void rejectPlyWithoutHeaderEnd(std::string_view data, std::string format, const std::string &path)
+{
+    std::transform(format.begin(), format.end(), format.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const auto first = data.find_first_not_of(" \t\r\n");
+    const bool ply = format == "ply" || (first != std::string_view::npos && data.substr(first, 3) == "ply");
+    if (ply && data.find("end_header") == std::string_view::npos)
+        throw InputError(path, 0, "malformed PLY file: its header has no end_header line");
+}
+
+std::string extensionOf(const std::string &path)
+{
+    const auto dot = path.find_last_of('.');
+    const auto slash = path.find_last_of("/\\");
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+        return {};
+    return path.substr(dot + 1);
 }
 
 // Imports `source` with post-processing `flags`; throws InputError naming the source when assimp
@@ -212,6 +238,11 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
                              std::to_string(maxBytes) + " (" + std::to_string(limits.bytesPerTriangle) +
                              " bytes for each of the " + std::to_string(limits.maxTriangles) +
                              " triangles allowed per mesh; the command line's --max-triangles raises it)");
+    {
+        std::ifstream in(path, std::ios::binary);
+        const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        rejectPlyWithoutHeaderEnd(content, extensionOf(path), path);
+    }
     return loadFrom(*importer.importer_, Source{path}, role, limits);
 }
 
@@ -226,6 +257,7 @@ LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, con
         throw InputError(sourceName, 0,
                          "the mesh data has " + std::to_string(data.size()) + " bytes, above the limit of " +
                              std::to_string(maxBytes));
+    rejectPlyWithoutHeaderEnd(data, formatHint, sourceName);
     return loadFrom(*importer.importer_, Source{sourceName, true, data, &formatHint}, role, limits);
 }
 

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -314,7 +315,9 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
         else if (key == "run_count")
         {
             const double runs = parser.number(key, e);
-            if (runs < 1 || runs != std::floor(runs))
+            // Above the largest unsigned, the conversion would be undefined (found by fuzzing:
+            // tests/fuzz_corpus/cfg/regression_huge_run_count.cfg).
+            if (runs < 1 || runs != std::floor(runs) || runs > double(std::numeric_limits<unsigned>::max()))
                 throw InputError(path, e.line, "run_count needs a positive whole number, got '" + e.value + "'");
             cfg.benchmark.runCount = unsigned(runs);
         }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace hcd
@@ -20,6 +21,21 @@ double rotationAngle(const Mat3 &r1, const Mat3 &r2)
 
 constexpr std::size_t kMaxQueries = 100000;  // beyond this a motion is refused rather than certified
 constexpr std::size_t kMaxRefinementQueries = 5000;  // bracketing a known contact stops here
+
+// Reverses the low `bits` bits of i.
+std::uint64_t reverseBits(std::uint64_t i, unsigned bits)
+{
+    std::uint64_t r = 0;
+    for (unsigned b = 0; b < bits; ++b, i >>= 1)
+        r = (r << 1) | (i & 1u);
+    return r;
+}
+
+// The verdict path's raked collision checks: about one per kRakeStride of OMPL's samples (rounded
+// to a power of two); certification then starts from intervals spanning kStartGroup raked steps.
+// Measured with bench/motion_comparison.cpp (bench/README.md, section 3).
+constexpr unsigned kRakeStride = 8;
+constexpr unsigned kStartGroup = 1;
 }  // namespace
 
 ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInformationPtr &si,
@@ -41,19 +57,19 @@ void ContinuousMotionValidator::setContactTolerance(double fraction, bool atMost
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
 {
-    return finish(certify(s1, s2, false), s1, s2, nullptr, nullptr);
+    return finish(verdict(s1, s2), s1, s2, nullptr, nullptr);
 }
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                                             std::pair<ompl::base::State *, double> &lastValid) const
 {
-    return finish(certify(s1, s2, true), s1, s2, lastValid.first, &lastValid.second);
+    return finish(certify(s1, s2), s1, s2, lastValid.first, &lastValid.second);
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::checkMotionDetailed(const ompl::base::State *s1,
                                                                                  const ompl::base::State *s2) const
 {
-    const Report report = certify(s1, s2, true);
+    const Report report = certify(s1, s2);
     finish(report, s1, s2, nullptr, nullptr);
     return report;
 }
@@ -73,7 +89,7 @@ bool ContinuousMotionValidator::finish(const Report &report, const ompl::base::S
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl::base::State *s1,
-                                                                     const ompl::base::State *s2, bool refine) const
+                                                                     const ompl::base::State *s2) const
 {
     ompl::base::SpaceInformation *si = si_;
     const ompl::base::StateSpacePtr &space = si->getStateSpace();
@@ -105,29 +121,18 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
 
-    // A pass of collision checks at OMPL's resolution rejects most blocked motions cheaply: from s2
-    // backwards when only validity matters (as OMPL's discrete validator
-    // does: motions into an obstacle usually end in it), from s1 onwards when the first contact is
-    // wanted, since then it only needs to be searched for before the first colliding sample.
+    // A pass of collision checks at OMPL's resolution from s1 onwards: the first contact then only
+    // needs to be searched for before the first colliding sample.
     const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
     double end = 1.0;  // the search for the first contact stops here
     bool contactKnown = false;
-    if (!refine)
-    {
-        // Every fourth sample: most blocked motions are caught, and free ones (which the
-        // certification below settles anyway) pay a quarter of the discrete validator's cost.
-        for (unsigned k = n; k >= 1; k = k > 4 ? k - 4 : 0)
-            if (validity_->poseCollides(poseAt(double(k) / n)))
-                return contact(0.0, double(k) / n);
-    }
-    else
-        for (unsigned k = 1; k <= n; ++k)
-            if (validity_->poseCollides(poseAt(double(k) / n)))
-            {
-                end = double(k) / n;
-                contactKnown = true;
-                break;
-            }
+    for (unsigned k = 1; k <= n; ++k)
+        if (validity_->poseCollides(poseAt(double(k) / n)))
+        {
+            end = double(k) / n;
+            contactKnown = true;
+            break;
+        }
 
     const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
     // Per unit of tau a robot point p moves at most translationRate + angleRate * |p|.
@@ -149,14 +154,13 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         double a, b;
     };
     // Start from OMPL's segments rather than [0, 1]: short intervals need small clearances, which
-    // the proximity query settles quickly. The earliest segment is processed first when the first
-    // contact is wanted (so [0, certified] is a proven-free prefix); otherwise the last one is, as
-    // blocked motions mostly end in the obstacle.
+    // the proximity query settles quickly. The earliest segment is processed first, so that
+    // [0, certified] is a proven-free prefix.
     std::vector<Interval> pending;
     const unsigned segments = std::max(1u, unsigned(std::ceil(end * n - 1e-9)));
     for (unsigned i = 1; i <= segments; ++i)
     {
-        const unsigned k = refine ? segments + 1 - i : i;
+        const unsigned k = segments + 1 - i;
         pending.push_back({end * double(k - 1) / segments, end * double(k) / segments});
     }
     double certified = 0.0, contactAt = contactKnown ? end : 2.0, nearContactAt = 2.0;
@@ -180,14 +184,13 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         }
         if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_))
         {
-            if (refine)
-                certified = iv.b;  // intervals are taken in order: the free prefix grows
+            certified = iv.b;  // intervals are taken in order: the free prefix grows
             continue;
         }
         if (validity_->poseCollides(pose))
         {
             contactAt = mid;
-            if (!refine || contactAt - certified <= tolerance)
+            if (contactAt - certified <= tolerance)
                 break;
             pending.clear();
             pending.push_back({certified, contactAt});
@@ -195,19 +198,14 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         }
         // Neither certified nor colliding: some robot point is within its reach of the environment.
         // Once that reach is below the smallest clearance ever certified, the middle state is a near
-        // contact, which blocks the motion as a contact does. Verdicts stop there. The first-contact
-        // search stops there only when the near contact lies within the tolerance of the proven-free
+        // contact, which blocks the motion as a contact does. The first-contact search stops there
+        // only when the near contact lies within the tolerance of the proven-free
         // prefix (intervals are taken in order, so iv.a == certified) and, once a real contact is
         // known, only after splitting to 1e-3 of the tolerance: a grazing approach (distance falling
         // quadratically in time) is where certification stalls, and elsewhere the bracket closes on
         // the contact itself.
         const bool nearContact = needed < minimumClearance_;
-        if (!refine && nearContact)
-        {
-            refused = true;
-            break;
-        }
-        if (refine && nearContact && mid - certified <= tolerance &&
+        if (nearContact && mid - certified <= tolerance &&
             (contactAt > 1.0 || iv.b - iv.a < 1e-3 * tolerance))
         {
             nearContactAt = mid;
@@ -232,12 +230,107 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         report.blocked = true;
         report.blockedAt = nearContactAt;
     }
-    else if (contactAt <= 1.0 && (!refine || contactAt - certified <= tolerance))
+    else if (contactAt <= 1.0 && contactAt - certified <= tolerance)
     {
         report.blocked = true;
         report.blockedAt = contactAt;
     }
     report.free = !refused && contactAt > 1.0 && nearContactAt > 1.0 && pending.empty();
+    return report;
+}
+
+ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl::base::State *s1,
+                                                                     const ompl::base::State *s2) const
+{
+    ompl::base::SpaceInformation *si = si_;
+    const ompl::base::StateSpacePtr &space = si->getStateSpace();
+    const bool planar = validity_->planar();
+    struct StateHolder
+    {
+        ompl::base::SpaceInformation *si;
+        ompl::base::State *state;
+        ~StateHolder() { si->freeState(state); }
+    } holder{si, si->allocState()};
+    ompl::base::State *state = holder.state;
+    const auto poseAt = [&](double tau) {
+        space->interpolate(s1, s2, tau, state);
+        return poseOfState(state, planar);
+    };
+    Report report;
+    const auto contact = [&](double at) {
+        report.contactFound = true;
+        report.contactAt = at;
+        report.blocked = true;
+        report.blockedAt = at;
+        return report;
+    };
+    const RigidTransform p1 = poseOfState(s1, planar);
+    if (validity_->poseCollides(p1))
+        return contact(0.0);
+    if (applyBounds_ && !si->satisfiesBounds(s2))
+        return report;  // refused, no contact
+
+    // Raked collision checks: states on a dyadic grid of m + 1 points (about one per `kRakeStride`
+    // of OMPL's samples) visited coarse to fine, the end first, then 1/2, 1/4, 3/4, 1/8, 5/8, ...
+    // (bit-reversed order), so that a colliding motion is caught after a few checks wherever it
+    // collides. The first collision stops everything.
+    const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
+    unsigned bits = 0;
+    while ((1u << bits) * kRakeStride < n && bits < 20)
+        ++bits;
+    const std::uint64_t m = std::uint64_t(1) << bits;
+    if (validity_->poseCollides(poseAt(1.0)))
+        return contact(1.0);
+    for (std::uint64_t i = 1; i < m; ++i)
+    {
+        const double tau = double(reverseBits(i, bits)) / double(m);
+        if (validity_->poseCollides(poseAt(tau)))
+            return contact(tau);
+    }
+
+    const RigidTransform p2 = poseOfState(s2, planar);
+    const double translationRate = (p2.translation - p1.translation).norm() * (1.0 + 1e-9);
+    const double angleRate = rotationAngle(p1.rotation, p2.rotation) * (1.0 + 1e-9) + 1e-15;
+    const double speed = translationRate + robotRadius_ * angleRate;
+    if (!(speed > 0.0))
+    {
+        report.free = true;  // both ends were checked
+        return report;
+    }
+
+    // Certification of the dyadic intervals between the raked states (or of groups of them), by
+    // bisection with the swept-proximity query. A middle state that is a raked state is known to
+    // be collision-free; any other is checked for collision before splitting.
+    struct Interval
+    {
+        double a, b;
+    };
+    std::vector<Interval> pending;
+    const std::uint64_t starts = std::max<std::uint64_t>(1, m / kStartGroup);
+    for (std::uint64_t k = 1; k <= starts; ++k)
+        pending.push_back({double(k - 1) / double(starts), double(k) / double(starts)});
+    std::size_t queries = 0;
+    while (!pending.empty())
+    {
+        const Interval iv = pending.back();
+        pending.pop_back();
+        const double mid = 0.5 * (iv.a + iv.b);
+        const double half = 0.5 * (iv.b - iv.a);
+        if (++queries > kMaxQueries)
+            return report;  // refused
+        const RigidTransform pose = poseAt(mid);
+        if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_))
+            continue;
+        const double onGrid = mid * double(m);
+        if (onGrid != std::floor(onGrid) && validity_->poseCollides(pose))
+            return contact(mid);
+        // A near contact is never accepted; nor is an interval doubles cannot split.
+        if (speed * half < minimumClearance_ || !(iv.a < mid && mid < iv.b))
+            return report;
+        pending.push_back({mid, iv.b});
+        pending.push_back({iv.a, mid});
+    }
+    report.free = true;
     return report;
 }
 }  // namespace hcd

@@ -156,4 +156,9 @@ TEST(Cli, ClearanceAndCheckMotion)
     EXPECT_LE(t, contact);
     EXPECT_GE(t, contact - 1e-6);
     EXPECT_EQ(second, 1);
+    // The verdict alone: no fraction, and the mean time per motion on stderr.
+    const CliRun verdict = run("check-motion " + problem3d() + " --motions " + motions + " --verdict-only 2>&1");
+    ASSERT_EQ(verdict.status, 0) << verdict.output;
+    EXPECT_EQ(verdict.output.substr(0, 4), "0\n1\n") << verdict.output;
+    EXPECT_NE(verdict.output.find("us per motion"), std::string::npos) << verdict.output;
 }

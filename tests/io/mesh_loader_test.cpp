@@ -164,6 +164,22 @@ TEST(MeshLoader, PlyFaceWithoutIndicesIsAnErrorNotAnAbort)
     EXPECT_THROW(loadMesh(test::writeTempFile("truncated.ply", text), MeshRole::Environment), InputError);
 }
 
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply): assimp's PLY reader
+// never returns when the header has no end_header line. The loader refuses such data first.
+TEST(MeshLoader, PlyWithoutHeaderEndIsAnErrorNotAHang)
+{
+    const std::string text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nen 0\n"
+                             "vd_header\n0 0 0\n4 0 0\n0 4 0\n3 0 1 2\n";
+    for (const std::string format : {"ply", "PLY", ""})
+        EXPECT_THROW(loadMeshFromMemory(text, format, MeshRole::Environment, "no_end.ply"), InputError) << format;
+    EXPECT_THROW(loadMesh(test::writeTempFile("no_end.ply", text), MeshRole::Environment), InputError);
+    // With the line, the same triangle loads.
+    std::string fixed = text;
+    fixed.replace(fixed.find("en 0\nvd_header"), 14, "end_header");
+    EXPECT_EQ(loadMeshFromMemory(fixed, "ply", MeshRole::Environment, "end.ply").mesh->triangleCount(), 1u);
+}
+
 TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
 {
     const std::string path = test::writeTempFile("robot.obj", kObj);

@@ -125,6 +125,12 @@ TEST(ProblemConfig, ErrorsNameFileAndLine)
     EXPECT_NE(errorOf("robot = r.obj\n").find("bad.cfg:1: 'robot' appears before any [section]"), std::string::npos);
     EXPECT_NE(errorOf(std::string(kMinimal) + "[benchmark]\nrun_count = 2.5\n").find("bad.cfg:11: run_count"),
               std::string::npos);
+    // Found by fuzzing (tests/fuzz_corpus/cfg/regression_huge_run_count.cfg): converting a count
+    // beyond the largest unsigned was undefined behaviour.
+    EXPECT_NE(errorOf(std::string(kMinimal) + "[benchmark]\nrun_count = 5e98\n").find("bad.cfg:11: run_count"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(kMinimal) + "[benchmark]\nrun_count = 4294967296\n").find("bad.cfg:11: run_count"),
+              std::string::npos);
     EXPECT_EQ(errorOf(kMinimal), "");
 }
 

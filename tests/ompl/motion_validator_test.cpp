@@ -205,6 +205,72 @@ TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
     si->freeState(s);
 }
 
+namespace
+{
+// The verdict path (checkMotion without a last valid state: raked checks, then certification) and
+// the bracketing path (checkMotionDetailed) agree on free / not free on random motions as planners
+// make them (valid start, end up to a fifth of the extent away), and no motion the verdict path
+// accepts touches the environment under brute force at 2000 uniform samples.
+void expectVerdictMatchesBracketing(const std::string &cfg, int motions)
+{
+    const LoadedProblem problem = loadProblem(cfg);
+    const bool planar = problem.config.planar;
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    validator.setContactTolerance(1e-6);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    auto sampler = si->allocStateSampler();
+    ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();
+    int free = 0, blocked = 0;
+    for (int i = 0; i < motions; ++i)
+    {
+        do
+            sampler->sampleUniform(a);
+        while (!si->isValid(a));
+        sampler->sampleUniformNear(b, a, 0.2 * si->getMaximumExtent());
+        si->enforceBounds(b);
+        const bool verdict = validator.checkMotion(a, b);
+        const auto report = validator.checkMotionDetailed(a, b);
+        ASSERT_EQ(verdict, report.free) << "motion " << i << " of " << cfg;
+        if (!verdict)
+        {
+            ++blocked;
+            continue;
+        }
+        ++free;
+        const int steps = 2000;
+        for (int k = 0; k <= steps; ++k)
+        {
+            si->getStateSpace()->interpolate(a, b, double(k) / steps, s);
+            ASSERT_FALSE(reference->collides(poseOfState(s, planar)))
+                << "accepted motion " << i << " of " << cfg << " touches at " << double(k) / steps;
+        }
+    }
+    // Both outcomes occur, so both paths are exercised.
+    EXPECT_GT(free, 0) << cfg;
+    EXPECT_GT(blocked, 0) << cfg;
+    si->freeState(a);
+    si->freeState(b);
+    si->freeState(s);
+}
+}  // namespace
+
+TEST(MotionValidator, VerdictAgreesWithBracketingOnOmplAppMotions)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cubicles, "3D/cubicles.cfg");
+    expectVerdictMatchesBracketing(cubicles, test::cases(150));
+    HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
+    expectVerdictMatchesBracketing(maze, test::cases(150));
+}
+
+TEST(MotionValidator, VerdictAgreesWithBracketingOnProjectProblems)
+{
+    expectVerdictMatchesBracketing(test::sourcePath("problems/window_3d.cfg"), test::cases(150));
+    expectVerdictMatchesBracketing(test::sourcePath("problems/corridor_2d.cfg"), test::cases(150));
+}
+
 TEST(Clearance, MatchesBruteForceDistanceOnFreePoses)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");

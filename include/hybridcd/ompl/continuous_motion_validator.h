@@ -15,8 +15,11 @@
 // the contact tolerance. A motion is rejected when a middle state collides (contact found) or when
 // an interval shrinks below a clearance too small to certify (1e-7 of the scene size, a near
 // contact): a motion is never accepted on rounding alone. When the first contact is asked for, the
-// bracket closes on the first contact or near contact. A pass of collision checks at OMPL's
-// resolution first rejects most invalid motions at the discrete validator's cost.
+// bracket closes on the first contact or near contact; a pass of collision checks at OMPL's
+// resolution first finds the earliest colliding sample. The verdict alone (checkMotion without a
+// last valid state) skips that pass: it checks collisions at states raked over the whole motion
+// (the end, then 1/2, 1/4, 3/4, 1/8, 5/8, ... down to about every eighth of OMPL's samples),
+// stopping at the first collision, and only then certifies the intervals between them.
 #pragma once
 
 #include "hybridcd/ompl/state_validity_checker.h"
@@ -82,8 +85,10 @@ public:
     std::uint64_t invalidMotions() const { return invalidCount_.load(); }
 
 private:
-    /// The one code path of every public check; `refine` asks for the first contact's bracket.
-    Report certify(const ompl::base::State *s1, const ompl::base::State *s2, bool refine) const;
+    /// The first-contact search (checkMotionDetailed and checkMotion with a last valid state).
+    Report certify(const ompl::base::State *s1, const ompl::base::State *s2) const;
+    /// The verdict alone (no bracket): raked collision checks, then certification of what is left.
+    Report verdict(const ompl::base::State *s1, const ompl::base::State *s2) const;
     bool finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
                 ompl::base::State *lastValidState, double *lastValidFraction) const;
 
