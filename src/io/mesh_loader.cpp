@@ -83,18 +83,89 @@ const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, uns
     return importer.ApplyPostProcessing(flags);
 }
 
-// assimp 5.2's PLY reader never returns on a header without "end_header": it keeps asking for
-// the next line past the end of the data (found by fuzzing,
-// tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply). Data that goes to that reader, by its
-// format (`format` is the extension or hint) or by starting with "ply", is refused before import.
-void rejectPlyWithoutHeaderEnd(std::string_view data, std::string format, const std::string &path)
+std::string lowercase(std::string_view text)
 {
-    std::transform(format.begin(), format.end(), format.begin(),
+    std::string out(text);
+    std::transform(out.begin(), out.end(), out.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    const auto first = data.find_first_not_of(" \t\r\n");
-    const bool ply = format == "ply" || (first != std::string_view::npos && data.substr(first, 3) == "ply");
+    return out;
+}
+
+// Whitespace-separated tokens of `data`, '#' comments skipped, at most `count` of them.
+std::vector<std::string_view> leadingTokens(std::string_view data, std::size_t count)
+{
+    std::vector<std::string_view> tokens;
+    std::size_t i = 0;
+    while (tokens.size() < count && i < data.size())
+    {
+        const unsigned char c = static_cast<unsigned char>(data[i]);
+        if (std::isspace(c))
+            ++i;
+        else if (c == '#')
+            i = std::min(data.size(), data.find('\n', i));
+        else
+        {
+            std::size_t j = i;
+            while (j < data.size() && !std::isspace(static_cast<unsigned char>(data[j])))
+                ++j;
+            tokens.push_back(data.substr(i, j - i));
+            i = j;
+        }
+    }
+    return tokens;
+}
+
+// The leading decimal digits of `token` as a number, saturated at the largest value.
+std::uintmax_t leadingCount(std::string_view token)
+{
+    std::uintmax_t value = 0;
+    for (char c : token)
+    {
+        if (c < '0' || c > '9')
+            break;
+        const std::uintmax_t digit = std::uintmax_t(c - '0');
+        if (value > (std::numeric_limits<std::uintmax_t>::max() - digit) / 10)
+            return std::numeric_limits<std::uintmax_t>::max();
+        value = value * 10 + digit;
+    }
+    return value;
+}
+
+// Refuses, before assimp sees them, data that assimp 5.2's readers cannot survive (each found by
+// fuzzing; `format` is the file's extension or the buffer's hint):
+// - PLY data whose header has no "end_header": the PLY reader keeps asking for the next line past
+//   the end of the data and never returns (tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply).
+// - OFF data whose header announces more vertices or faces than its bytes can hold: the OFF reader
+//   allocates every announced face before reading one, and billions of them exhaust memory
+//   (tests/fuzz_corpus/mesh/regression_off_huge_face_count.off). Every vertex and face takes more
+//   than one byte, so a count above the data's size is never valid.
+void rejectBeforeImport(std::string_view data, const std::string &format, const std::string &name)
+{
+    const std::string kind = lowercase(format);
+    const std::vector<std::string_view> tokens = leadingTokens(data, 4);
+    const std::string first = tokens.empty() ? std::string() : lowercase(tokens.front());
+
+    const bool ply = kind == "ply" || first.rfind("ply", 0) == 0;
     if (ply && data.find("end_header") == std::string_view::npos)
-        throw InputError(path, 0, "malformed PLY file: its header has no end_header line");
+        throw InputError(name, 0, "malformed PLY file: its header has no end_header line");
+
+    // The OFF header is "[ST][C][N][4][n]OFF", an optional dimension after the 'n' form, then the
+    // vertex, face and edge counts; the keyword itself may be left out.
+    const bool keyword = first.find("off") != std::string::npos;
+    if (kind != "off" && !keyword)
+        return;
+    std::size_t at = 0;
+    if (keyword)
+        at = first.find("noff") != std::string::npos ? 2 : 1;
+    for (std::size_t k = at; k < std::min(tokens.size(), at + 2); ++k)
+    {
+        const std::uintmax_t count = leadingCount(tokens[k]);
+        if (count > data.size())
+            throw InputError(name, 0,
+                             "malformed OFF file: its header announces " + std::string(tokens[k]) + " " +
+                                 (k == at ? "vertices" : "faces") + ", more than its " +
+                                 std::to_string(data.size()) + " bytes can hold");
+    }
 }
 
 std::string extensionOf(const std::string &path)
@@ -169,6 +240,19 @@ double extentOf(const std::vector<aiVector3D> &corners)
     return corners.empty() ? 0.0 : (hi - lo).norm();
 }
 
+// Refuses mesh data of `bytes` bytes above the limit: assimp holds the whole of it and more.
+void rejectAboveByteLimit(std::uintmax_t bytes, const char *what, const std::string &name, const MeshLimits &limits)
+{
+    const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
+    if (bytes > maxBytes)
+        throw InputError(name, 0,
+                         std::string("the mesh ") + what + " has " + std::to_string(bytes) +
+                             " bytes, above the limit of " + std::to_string(maxBytes) + " (" +
+                             std::to_string(limits.bytesPerTriangle) + " bytes for each of the " +
+                             std::to_string(limits.maxTriangles) +
+                             " triangles allowed per mesh; the command line's --max-triangles raises it)");
+}
+
 // The mesh of `source`, placed for `role`.
 LoadedMesh loadFrom(Assimp::Importer &importer, const Source &source, MeshRole role, const MeshLimits &limits)
 {
@@ -231,18 +315,20 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
         throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
     // Refused before assimp reads it: assimp holds the whole file and more in memory.
     const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+    if (!ec)
+        rejectAboveByteLimit(bytes, "file", path, limits);
+    // Read up to one byte past the limit, so that a device or pipe without a size cannot run on.
     const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
-    if (!ec && bytes > maxBytes)
-        throw InputError(path, 0,
-                         "the mesh file has " + std::to_string(bytes) + " bytes, above the limit of " +
-                             std::to_string(maxBytes) + " (" + std::to_string(limits.bytesPerTriangle) +
-                             " bytes for each of the " + std::to_string(limits.maxTriangles) +
-                             " triangles allowed per mesh; the command line's --max-triangles raises it)");
+    std::ifstream in(path, std::ios::binary);
+    std::string content;
+    char block[1 << 16];
+    while (in && content.size() <= maxBytes)
     {
-        std::ifstream in(path, std::ios::binary);
-        const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        rejectPlyWithoutHeaderEnd(content, extensionOf(path), path);
+        in.read(block, sizeof block);
+        content.append(block, std::size_t(in.gcount()));
     }
+    rejectAboveByteLimit(content.size(), "file", path, limits);
+    rejectBeforeImport(content, extensionOf(path), path);
     return loadFrom(*importer.importer_, Source{path}, role, limits);
 }
 
@@ -252,12 +338,8 @@ LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, con
     // assimp refuses an empty buffer without saying why.
     if (data.empty())
         throw InputError(sourceName, 0, "mesh data is empty");
-    const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
-    if (data.size() > maxBytes)
-        throw InputError(sourceName, 0,
-                         "the mesh data has " + std::to_string(data.size()) + " bytes, above the limit of " +
-                             std::to_string(maxBytes));
-    rejectPlyWithoutHeaderEnd(data, formatHint, sourceName);
+    rejectAboveByteLimit(data.size(), "data", sourceName, limits);
+    rejectBeforeImport(data, formatHint, sourceName);
     return loadFrom(*importer.importer_, Source{sourceName, true, data, &formatHint}, role, limits);
 }
 

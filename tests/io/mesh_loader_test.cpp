@@ -180,6 +180,38 @@ TEST(MeshLoader, PlyWithoutHeaderEndIsAnErrorNotAHang)
     EXPECT_EQ(loadMeshFromMemory(fixed, "ply", MeshRole::Environment, "end.ply").mesh->triangleCount(), 1u);
 }
 
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_off_huge_face_count.off): assimp's OFF reader
+// allocates every face its header announces before reading any, so a header announcing billions
+// of faces exhausts memory. The loader refuses counts that the data's bytes cannot hold.
+TEST(MeshLoader, OffAnnouncingMoreThanItsBytesHoldIsAnError)
+{
+    const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const std::string huge = "88888888888888888888888888888888";
+    for (const std::string &header : std::vector<std::string>{"OFF\n3 " + huge + " 0\n", "OFF\n" + huge + " 1 0\n", "COFF 3 " + huge + " 0\n",
+                                      "nOFF 3\n3 " + huge + " 0\n", "# comment\nOFF\n3 4000000000 0\n"})
+    {
+        const std::string text = header + body;
+        for (const std::string format : {"off", "OFF", ""})
+        {
+            try
+            {
+                loadMeshFromMemory(text, format, MeshRole::Environment, "huge.off");
+                ADD_FAILURE() << "accepted: " << header << " as " << format;
+            }
+            catch (const InputError &e)
+            {
+                EXPECT_NE(std::string(e.what()).find("malformed OFF file: its header announces"), std::string::npos)
+                    << e.what();
+            }
+        }
+        EXPECT_THROW(loadMesh(test::writeTempFile("huge.off", text), MeshRole::Environment), InputError);
+    }
+    // Counts the data can hold load as before, comments and all.
+    for (const std::string header : {"OFF\n3 1 0\n", "OFF 3 1 0\n", "OFF\n# 99999999999 faces\n3 1 0\n"})
+        EXPECT_EQ(loadMeshFromMemory(header + body, "off", MeshRole::Environment, "ok.off").mesh->triangleCount(), 1u)
+            << header;
+}
+
 TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
 {
     const std::string path = test::writeTempFile("robot.obj", kObj);
