@@ -50,7 +50,9 @@ private:
 template <class Volume>
 VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles,
                                              std::optional<PieceStage> pieces)
-    : scene_(std::move(scene)),
+    : robotFaces_(withoutRepeatedFaces(scene.robot)),
+      environmentFaces_(withoutRepeatedFaces(scene.environment)),
+      scene_{robotFaces_.mesh, environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName)},
       name_(std::move(name)),
       robotTree_(scene_.robot, pieces ? pieces->leafTriangles : maxLeafTriangles),
       environmentTree_(scene_.environment, pieces ? pieces->leafTriangles : maxLeafTriangles),
@@ -232,6 +234,12 @@ std::vector<ContactPair> VolumeTreeChecker<Volume>::contacts(const RigidTransfor
     std::vector<ContactPair> found;
     if (limit > 0 && worldFromRobot.isFinite())
         anyPairWithin(worldFromRobot, {}, nullptr, &found, limit);
+    for (ContactPair &c : found)
+        if (c.kind == ContactPair::Kind::Triangles)
+        {
+            c.robotElement = robotFaces_.source(c.robotElement);
+            c.environmentElement = environmentFaces_.source(c.environmentElement);
+        }
     return found;
 }
 
