@@ -56,6 +56,8 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
     std::cout << "  triangles: " << m.mesh->triangleCount() << " (file: " << m.sourceTriangles
               << ", degenerate dropped: " << m.droppedDegenerate
               << ", non-triangle primitives skipped: " << m.skippedNonTriangles << ")\n"
+              << "  repeated faces (same corners, either orientation; dropped from the query structures): "
+              << withoutRepeatedFaces(m.mesh).dropped << '\n'
               << "  vertices: " << m.mesh->vertices.size() << " (after welding identical ones)\n"
               << "  closed (watertight): " << (isClosed(*m.mesh) ? "yes" : "no") << '\n'
               << "  components: " << solidSummary(*m.mesh) << '\n'

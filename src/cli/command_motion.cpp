@@ -134,14 +134,20 @@ int runClearance(const std::vector<std::string> &args)
     out << std::setprecision(std::numeric_limits<double>::max_digits10);
     // Free: the exact distance. Colliding: minus the penetration estimate (0 when contained in a
     // solid, where no triangle pair gives a direction), as the OMPL adapter's clearance() reports.
+    std::size_t free = 0;
+    const auto start = std::chrono::steady_clock::now();
     for (const PoseRecord &p : poses)
     {
         const RigidTransform pose = poseToTransform(p, problem.config.planar);
         const double d = checker->distance(pose);
+        free += d > 0.0 ? 1 : 0;
         out << (d > 0.0 ? d : -estimatePenetration(*checker, problem.scene, pose, 0).depth) << '\n';
     }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << out.str();
-    std::cerr << "computed the clearance of " << poses.size() << " poses with '" << checker->name() << "'\n";
+    std::cerr << "computed the clearance of " << poses.size() << " poses with '" << checker->name() << "': " << free
+              << " free, " << poses.size() - free << " colliding; mean "
+              << (poses.empty() ? 0.0 : 1e9 * seconds / double(poses.size())) << " ns per clearance\n";
     return kSuccess;
 }
 }  // namespace hcd::cli

@@ -102,4 +102,44 @@ std::size_t weldAndDropDegenerate(TriangleMesh &mesh)
     mesh.triangles = std::move(kept);
     return dropped;
 }
+
+DistinctFaceMesh withoutRepeatedFaces(std::shared_ptr<const TriangleMesh> mesh)
+{
+    DistinctFaceMesh out;
+    if (!mesh)
+        return out;
+    // Sort (sorted corners, index) pairs: each group of repeats is contiguous, its first index first.
+    const std::vector<Triangle> &triangles = mesh->triangles;
+    std::vector<std::pair<Triangle, std::uint32_t>> keys;
+    keys.reserve(triangles.size());
+    for (std::uint32_t t = 0; t < triangles.size(); ++t)
+    {
+        Triangle key = triangles[t];
+        std::sort(key.begin(), key.end());
+        keys.emplace_back(key, t);
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<char> keep(triangles.size(), 0);
+    for (std::size_t i = 0; i < keys.size(); ++i)
+        keep[keys[i].second] = i == 0 || keys[i].first != keys[i - 1].first;
+    const std::size_t kept = std::size_t(std::count(keep.begin(), keep.end(), char(1)));
+    if (kept == triangles.size())
+    {
+        out.mesh = std::move(mesh);
+        return out;
+    }
+    auto distinct = std::make_shared<TriangleMesh>();
+    distinct->vertices = mesh->vertices;
+    distinct->triangles.reserve(kept);
+    out.sourceTriangle.reserve(kept);
+    for (std::uint32_t t = 0; t < triangles.size(); ++t)
+        if (keep[t])
+        {
+            distinct->triangles.push_back(triangles[t]);
+            out.sourceTriangle.push_back(t);
+        }
+    out.dropped = triangles.size() - kept;
+    out.mesh = std::move(distinct);
+    return out;
+}
 }  // namespace hcd

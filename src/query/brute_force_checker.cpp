@@ -9,7 +9,10 @@
 
 namespace hcd
 {
-BruteForceChecker::BruteForceChecker(CollisionScene scene) : scene_(std::move(scene))
+BruteForceChecker::BruteForceChecker(CollisionScene scene)
+    : robotFaces_(withoutRepeatedFaces(scene.robot)),
+      environmentFaces_(withoutRepeatedFaces(scene.environment)),
+      scene_{robotFaces_.mesh, environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName)}
 {
     const TriangleMesh &env = *scene_.environment;
     for (std::uint32_t t = 0; t < env.triangleCount(); ++t)
@@ -86,7 +89,7 @@ std::vector<ContactPair> BruteForceChecker::contacts(const RigidTransform &world
         const Vec3 a2 = worldFromRobot.apply(robot.corner(i, 2));
         for (std::uint32_t j = 0; j < env.triangleCount() && found.size() < limit; ++j)
             if (trianglesIntersect(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2)))
-                found.push_back({ContactPair::Kind::Triangles, i, j,
+                found.push_back({ContactPair::Kind::Triangles, robotFaces_.source(i), environmentFaces_.source(j),
                                  triangleContactPoint(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2))});
     }
     return found;

@@ -50,7 +50,9 @@ private:
 template <class Volume>
 VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles,
                                              std::optional<PieceStage> pieces)
-    : scene_(std::move(scene)),
+    : robotFaces_(withoutRepeatedFaces(scene.robot)),
+      environmentFaces_(withoutRepeatedFaces(scene.environment)),
+      scene_{robotFaces_.mesh, environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName)},
       name_(std::move(name)),
       robotTree_(scene_.robot, pieces ? pieces->leafTriangles : maxLeafTriangles),
       environmentTree_(scene_.environment, pieces ? pieces->leafTriangles : maxLeafTriangles),
@@ -232,6 +234,12 @@ std::vector<ContactPair> VolumeTreeChecker<Volume>::contacts(const RigidTransfor
     std::vector<ContactPair> found;
     if (limit > 0 && worldFromRobot.isFinite())
         anyPairWithin(worldFromRobot, {}, nullptr, &found, limit);
+    for (ContactPair &c : found)
+        if (c.kind == ContactPair::Kind::Triangles)
+        {
+            c.robotElement = robotFaces_.source(c.robotElement);
+            c.environmentElement = environmentFaces_.source(c.environmentElement);
+        }
     return found;
 }
 
@@ -262,14 +270,17 @@ double VolumeTreeChecker<Volume>::distance(const RigidTransform &worldFromRobot,
                                  rNodes[p.robot].radius - eNodes[p.environment].radius - tolerance;
         return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
-    TraversalStack stack;
-    stack.push({0, 0});
+    // Each pair's bound is computed once, when it is pushed, and compared again with the best
+    // distance when it is popped.
+    BasicTraversalStack<BoundedPair> stack;
+    stack.push({{0, 0}, lowerBound({0, 0})});
     while (!stack.empty())
     {
-        const NodePair pair = stack.pop();
+        const BoundedPair top = stack.pop();
+        const NodePair pair = top.pair;
         const typename VolumeTree<Volume>::Node &rn = rNodes[pair.robot];
         const typename VolumeTree<Volume>::Node &en = eNodes[pair.environment];
-        if (lowerBound(pair) >= best)
+        if (top.bound >= best)
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
@@ -292,10 +303,14 @@ double VolumeTreeChecker<Volume>::distance(const RigidTransform &worldFromRobot,
                                     : NodePair{pair.robot, std::uint32_t(en.firstChild)};
         NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
                                      : NodePair{pair.robot, std::uint32_t(en.firstChild + 1)};
-        if (lowerBound(first) > lowerBound(second))
-            std::swap(first, second);
-        stack.push(second);  // popped after the nearer one
-        stack.push(first);
+        BoundedPair nearer{first, lowerBound(first)}, farther{second, lowerBound(second)};
+        if (nearer.bound > farther.bound)
+            std::swap(nearer, farther);
+        // Pairs already beyond the best distance are dropped here rather than when popped.
+        if (!(farther.bound >= best))
+            stack.push(farther);  // popped after the nearer one
+        if (!(nearer.bound >= best))
+            stack.push(nearer);
     }
     if (stats)
     {

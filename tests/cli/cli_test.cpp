@@ -139,6 +139,11 @@ TEST(Cli, ClearanceAndCheckMotion)
     values >> free >> colliding;
     EXPECT_GT(free, 1.0);       // the start stands clear of every obstacle
     EXPECT_LT(colliding, 0.0);  // inside the wall: negative, a penetration
+    // The mean time per query on stderr, in the form check uses.
+    const CliRun timed = run("clearance " + problem3d() + " --states " + states);
+    ASSERT_EQ(timed.status, 0) << timed.output;
+    EXPECT_NE(timed.output.find("1 free, 1 colliding; mean "), std::string::npos) << timed.output;
+    EXPECT_NE(timed.output.find(" ns per clearance"), std::string::npos) << timed.output;
     // A motion straight through the dividing wall below the window, and one through the window.
     const std::string motions = test::writeTempFile(
         "motions.txt", "-26 -10 12 0 0 0 1 26 -10 12 0 0 0 1\n-26 0 25 0 0 0 1 26 0 25 0 0 0 1\n");

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,4 +61,24 @@ bool everyEdgeUsedEvenly(const std::vector<TriangleMesh::Triangle> &sortedFaces)
 /// Merges vertices with identical coordinates and drops triangles that become degenerate
 /// (collinear or repeated corners, decided exactly). Returns the number of triangles dropped.
 std::size_t weldAndDropDegenerate(TriangleMesh &mesh);
+
+/// A mesh as the query structures use it: every triangle that repeats an earlier one's corner
+/// indices, in the same or another order, removed (SketchUp exports every face twice, once
+/// reversed). The point set is unchanged, and so is closedness (isClosed() and meshComponents()
+/// ignore such repeats), so collision and distance answers are the same as on the source mesh.
+struct DistinctFaceMesh
+{
+    /// The source mesh itself when no face repeats; otherwise a copy without the repeats, with the
+    /// same vertices and the kept triangles in their source order (the first of each group is kept).
+    std::shared_ptr<const TriangleMesh> mesh;
+    /// Index in the source mesh of each triangle of `mesh`; empty when nothing was dropped.
+    std::vector<std::uint32_t> sourceTriangle;
+    /// Triangles of the source mesh left out.
+    std::size_t dropped = 0;
+
+    std::uint32_t source(std::uint32_t t) const { return sourceTriangle.empty() ? t : sourceTriangle[t]; }
+};
+
+/// Faces are compared by vertex index, so vertices should be welded first (the loader does).
+DistinctFaceMesh withoutRepeatedFaces(std::shared_ptr<const TriangleMesh> mesh);
 }  // namespace hcd

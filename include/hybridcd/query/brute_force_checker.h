@@ -9,7 +9,8 @@ namespace hcd
 /// The answer every faster checker is tested against. No hierarchy and no rounding in its culling:
 /// per query it maps all robot triangles to world, computes each triangle's axis-aligned box with
 /// exact comparisons, enumerates all robot/environment pairs whose boxes overlap by one sweep along
-/// x, and runs the exact triangle test on each. Only pairs that cannot touch are skipped.
+/// x, and runs the exact triangle test on each. Only pairs that cannot touch are skipped. A face
+/// repeated in a mesh (withoutRepeatedFaces) is tested once; contacts name source-mesh triangles.
 class BruteForceChecker final : public CollisionChecker
 {
 public:
@@ -25,7 +26,8 @@ private:
         Vec3 min, max;
         std::uint32_t triangle;
     };
-    CollisionScene scene_;
+    DistinctFaceMesh robotFaces_, environmentFaces_;
+    CollisionScene scene_;  ///< over the meshes without repeated faces
     std::vector<TriangleBox> environmentBoxes_;  ///< sorted by min.x
 };
 }  // namespace hcd

@@ -14,23 +14,31 @@ struct NodePair
     std::uint32_t environment;
 };
 
+/// A node pair with a lower bound on the distance of their contents, computed once.
+struct BoundedPair
+{
+    NodePair pair;
+    double bound;
+};
+
 /// Lives on the caller's stack, so concurrent queries never share scratch memory.
-class TraversalStack
+template <class Item>
+class BasicTraversalStack
 {
 public:
     bool empty() const { return size_ == 0 && overflow_.empty(); }
-    void push(NodePair p)
+    void push(Item p)
     {
         if (size_ < fixed_.size())
             fixed_[size_++] = p;
         else
             overflow_.push_back(p);
     }
-    NodePair pop()
+    Item pop()
     {
         if (!overflow_.empty())
         {
-            NodePair p = overflow_.back();
+            Item p = overflow_.back();
             overflow_.pop_back();
             return p;
         }
@@ -38,8 +46,10 @@ public:
     }
 
 private:
-    std::array<NodePair, 256> fixed_;
+    std::array<Item, 256> fixed_;
     std::size_t size_ = 0;
-    std::vector<NodePair> overflow_;
+    std::vector<Item> overflow_;
 };
+
+using TraversalStack = BasicTraversalStack<NodePair>;
 }  // namespace hcd

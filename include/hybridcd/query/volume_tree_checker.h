@@ -15,6 +15,7 @@ namespace hcd
 /// with the spheres first, then the volumes (VolumeTraits<Volume>::overlap, conservative); at the
 /// leaves an exact axis-aligned reject, then the exact triangle test. So the answer equals
 /// BruteForceChecker's whatever the volume. Instantiated for every volume in volume_traits.h.
+/// The trees hold each face once (withoutRepeatedFaces); contacts name source-mesh triangles.
 /// The LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is
 /// tested by linear programming before any triangle. Exact mode (tolerance < 0): an LP "disjoint"
 /// rejects the leaf pair, an LP "intersecting" is confirmed by the exact triangle tests.
@@ -71,7 +72,8 @@ private:
         Vec3 min, max;
     };
 
-    CollisionScene scene_;
+    DistinctFaceMesh robotFaces_, environmentFaces_;  ///< the scene's meshes without repeated faces
+    CollisionScene scene_;                           ///< over those meshes
     std::string name_;
     VolumeTree<Volume> robotTree_;
     VolumeTree<Volume> environmentTree_;
