@@ -108,7 +108,7 @@ int main(int argc, char **argv)
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
             std::vector<double> ns(poses.size());
             std::size_t colliding = 0, disagreements = 0;
-            QueryStats work;
+            QueryContext context;  // one per stream of queries, as the OMPL adapter keeps one per thread
             std::vector<double> distances;
             for (std::size_t i = 0; i < poses.size(); ++i)
             {
@@ -116,7 +116,7 @@ int main(int argc, char **argv)
                 bool hit = false;
                 if (distance)
                 {
-                    const double d = checker->distance(poses[i], &work);
+                    const double d = checker->distance(poses[i], context);
                     ns[i] = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
                     hit = !(d > 0.0);
                     distances.push_back(d);
@@ -128,7 +128,7 @@ int main(int argc, char **argv)
                 }
                 else
                 {
-                    hit = checker->collides(poses[i], &work);
+                    hit = checker->collides(poses[i], context);
                     ns[i] = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
                     if (reference && bool(truth[i]) != hit)
                         ++disagreements;
@@ -146,7 +146,7 @@ int main(int argc, char **argv)
                 << medians[name] << " | " << mean << " | %RATIO% | " << std::setprecision(1)
                 << 100.0 * double(colliding) / double(poses.size()) << "% | "
                 << (reference || distance ? std::to_string(disagreements) : std::string("-")) << " | " << std::setprecision(1)
-                << buildMs << " | " << std::setprecision(0) << double(work.boundingVolumeTests) / double(poses.size())
+                << buildMs << " | " << std::setprecision(0) << double(context.stats.boundingVolumeTests) / double(poses.size())
                 << " |";
             rows.push_back(row.str());
         }

@@ -103,10 +103,11 @@ int main(int argc, char **argv)
             for (const HierarchyReport &h : checker->hierarchies())
                 bytes += h.memoryBytes;
             std::vector<double> ns;
+            QueryContext context;
             for (const RigidTransform &p : poses)
             {
                 const auto q0 = std::chrono::steady_clock::now();
-                checker->collides(p);
+                checker->collides(p, context);
                 ns.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - q0).count());
             }
             medians[name] = median(ns);

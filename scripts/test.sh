@@ -38,8 +38,8 @@ if [ "${HYBRIDCD_SANITIZERS:-1}" != 0 ]; then
   step "ThreadSanitizer build and concurrency tests"
   cmake -S "$root" -B "$root/build-tsan" "${sanitizer_flags[@]}" -DHYBRIDCD_SANITIZE=thread \
     -DHYBRIDCD_BUILD_TESTS=ON -DHYBRIDCD_BUILD_CLI=OFF >/dev/null
-  cmake --build "$root/build-tsan" -j"$jobs" --target concurrency_test validity_checker_test
+  cmake --build "$root/build-tsan" -j"$jobs" --target concurrency_test validity_checker_test query_context_test
   (cd "$root/build-tsan" && TSAN_OPTIONS="halt_on_error=1" \
-    ctest --output-on-failure -R "Concurrency|ValidityChecker" --timeout 1800)
+    ctest --output-on-failure -R "Concurrency|ValidityChecker|QueryContext" --timeout 1800)
 fi
 step "all passed"

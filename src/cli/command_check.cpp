@@ -28,10 +28,11 @@ int runCheck(const std::vector<std::string> &args)
     std::string out;
     out.reserve(poses.size() * 2);
     std::size_t free = 0;
+    QueryContext context;
     const auto start = std::chrono::steady_clock::now();
     for (const PoseRecord &pose : poses)
     {
-        const bool collides = checker->collides(poseToTransform(pose, problem.config.planar));
+        const bool collides = checker->collides(poseToTransform(pose, problem.config.planar), context);
         free += collides ? 0 : 1;
         out += collides ? "0\n" : "1\n";
     }
@@ -58,9 +59,11 @@ int runContacts(const std::vector<std::string> &args)
     const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, options);
     std::ostringstream out;
     out << std::setprecision(10);
+    QueryContext context;
     for (std::size_t p = 0; p < poses.size(); ++p)
     {
-        const auto found = checker->contacts(poseToTransform(poses[p], problem.config.planar), std::size_t(limit));
+        const auto found =
+            checker->contacts(poseToTransform(poses[p], problem.config.planar), std::size_t(limit), context);
         out << "pose " << p + 1 << " (line " << poses[p].line << "): " << found.size() << " contact"
             << (found.size() == 1 ? "" : "s") << (found.size() == std::size_t(limit) ? " (limit reached)" : "") << '\n';
         for (const ContactPair &c : found)

@@ -136,12 +136,13 @@ int runClearance(const std::vector<std::string> &args)
     // solid, where no triangle pair gives a direction), as the OMPL adapter's clearance() reports.
     std::size_t free = 0;
     const auto start = std::chrono::steady_clock::now();
+    QueryContext context;
     for (const PoseRecord &p : poses)
     {
         const RigidTransform pose = poseToTransform(p, problem.config.planar);
-        const double d = checker->distance(pose);
+        const double d = checker->distance(pose, context);
         free += d > 0.0 ? 1 : 0;
-        out << (d > 0.0 ? d : -estimatePenetration(*checker, problem.scene, pose, 0).depth) << '\n';
+        out << (d > 0.0 ? d : -estimatePenetration(*checker, problem.scene, pose, context, 0).depth) << '\n';
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << out.str();

@@ -61,7 +61,7 @@ FclChecker::FclChecker(const CollisionScene &scene) : models_(std::make_unique<M
 
 FclChecker::~FclChecker() = default;
 
-bool FclChecker::collides(const RigidTransform &worldFromRobot, QueryStats *) const
+bool FclChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -73,7 +73,7 @@ bool FclChecker::collides(const RigidTransform &worldFromRobot, QueryStats *) co
                         fcl::Transform3d::Identity(), request, result) > 0;
 }
 
-double FclChecker::distance(const RigidTransform &worldFromRobot, QueryStats *) const
+double FclChecker::doDistance(const RigidTransform &worldFromRobot, QueryContext &) const
 {
     if (!worldFromRobot.isFinite())
         return 0.0;

@@ -3,6 +3,7 @@
 
 #include <boost/multiprecision/cpp_int.hpp>
 
+#include <atomic>
 #include <cmath>
 
 namespace hcd
@@ -11,7 +12,9 @@ namespace
 {
 using Rational = boost::multiprecision::cpp_rational;
 
-thread_local unsigned long long fallbackCount = 0;
+// Process-wide count of exact evaluations: rare (none on OMPL.app's problems), so a relaxed
+// atomic increment costs nothing measurable and needs no per-thread state.
+std::atomic<unsigned long long> fallbackCount{0};
 
 // Shewchuk's bounds are (7 + 56 eps) eps and (3 + 16 eps) eps with eps = 2^-53; we round up
 // generously, which only sends slightly more cases to the exact path.
@@ -39,7 +42,7 @@ bool anyUnderflow(double cx, double cy, double cz, double dx, double dy, double 
 
 int orient3dExact(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
 {
-    ++fallbackCount;
+    fallbackCount.fetch_add(1, std::memory_order_relaxed);
     const Rational ax(a.x()), ay(a.y()), az(a.z());
     const Rational bx = Rational(b.x()) - ax, by = Rational(b.y()) - ay, bz = Rational(b.z()) - az;
     const Rational cx = Rational(c.x()) - ax, cy = Rational(c.y()) - ay, cz = Rational(c.z()) - az;
@@ -50,7 +53,7 @@ int orient3dExact(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
 
 int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy)
 {
-    ++fallbackCount;
+    fallbackCount.fetch_add(1, std::memory_order_relaxed);
     const Rational rax(ax), ray(ay);
     const Rational det = (Rational(bx) - rax) * (Rational(cy) - ray) - (Rational(by) - ray) * (Rational(cx) - rax);
     return sign(det);
@@ -108,5 +111,5 @@ int orient2d(double ax, double ay, double bx, double by, double cx, double cy)
     return orient2dExact(ax, ay, bx, by, cx, cy);
 }
 
-unsigned long long exactPredicateFallbacks() { return fallbackCount; }
+unsigned long long exactPredicateFallbacks() { return fallbackCount.load(std::memory_order_relaxed); }
 }  // namespace hcd

@@ -38,18 +38,37 @@ struct Box
 // flat: within the box its left side is below ~1e-13, so it is checked as the constant 0 <= b.
 constexpr double kConstant = 1e-14;
 
-// One scratch list per dimension, per thread: the level-K step writes the rows of its (K-1)-D
-// subproblem into rows<K-1> while reading its own from rows<K>, so no two live subproblems
-// share a list. The lists only grow (to the largest problem seen), so once warm nothing is
-// allocated; the solver fetches the thread's workspace once per call and passes it down.
+// One scratch list per dimension: the level-K step writes the rows of its (K-1)-D subproblem
+// into rows<K-1> while reading its own from rows<K>, so no two live subproblems share a list. The
+// lists only grow (to the largest problem seen), so once warm nothing is allocated. The caller
+// owns the workspace (LpWorkspace); the solver passes it down.
 struct Workspace
 {
     std::vector<Row<1>> rows1;
     std::vector<Row<2>> rows2;
     std::vector<Row<3>> rows3;
     std::vector<Row<4>> rows4;
+    std::vector<Row<1>> spare1;
+    std::vector<Row<2>> spare2;
+    std::vector<Row<3>> spare3;
+    std::vector<Row<4>> spare4;
     std::vector<std::pair<double, int>> keys;
     std::vector<int> counts;
+    std::vector<Halfspace<3>> primalRows;
+
+    // A second list per dimension, for reordering rows<K> through a copy.
+    template <int K>
+    std::vector<Row<K>> &spare()
+    {
+        if constexpr (K == 1)
+            return spare1;
+        else if constexpr (K == 2)
+            return spare2;
+        else if constexpr (K == 3)
+            return spare3;
+        else
+            return spare4;
+    }
 
     template <int K>
     std::vector<Row<K>> &rows()
@@ -79,11 +98,6 @@ struct Workspace
     }
 };
 
-Workspace &workspace()
-{
-    thread_local Workspace w;
-    return w;
-}
 
 // The feasible interval of one variable, narrowed one constraint a y <= b at a time. Both ends
 // are kept as upper bounds, end_[0] on y and end_[1] on -y, so that either sign of a is the same
@@ -568,15 +582,25 @@ private:
 };
 }  // namespace
 
+struct LpWorkspace::Lists : Workspace
+{
+};
+
+LpWorkspace::LpWorkspace() : lists_(std::make_unique<Lists>()) {}
+LpWorkspace::~LpWorkspace() = default;
+LpWorkspace::LpWorkspace(LpWorkspace &&) noexcept = default;
+LpWorkspace &LpWorkspace::operator=(LpWorkspace &&) noexcept = default;
+
 template <int D>
-LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const Eigen::Matrix<double, D, 1> &objective,
-                           const Eigen::Matrix<double, D, 1> &lower, const Eigen::Matrix<double, D, 1> &upper,
-                           double tolerance, const Eigen::Matrix<double, D, 1> *orderHint, std::uint64_t seed)
+LpSolution<D> solveSmallLp(LpWorkspace &workspace, const std::vector<Halfspace<D>> &constraints,
+                           const Eigen::Matrix<double, D, 1> &objective, const Eigen::Matrix<double, D, 1> &lower,
+                           const Eigen::Matrix<double, D, 1> &upper, double tolerance,
+                           const Eigen::Matrix<double, D, 1> *orderHint, std::uint64_t seed)
 {
     LpSolution<D> solution;
     if (!((lower.array() <= upper.array() + tolerance).all()))
         return solution;
-    Workspace &ws = workspace();
+    Workspace &ws = workspace.lists();
     std::vector<Row<D>> &rows = ws.rows<D>();
     if (rows.size() < constraints.size())
         rows.resize(constraints.size());
@@ -613,7 +637,7 @@ LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const E
             ws.keys[std::size_t(i)] = {s, i};
         }
         sortKeys(ws.keys.data(), n);
-        thread_local std::vector<Row<D>> unsorted;
+        std::vector<Row<D>> &unsorted = ws.spare<D>();
         unsorted.assign(rows.begin(), rows.begin() + n);
         for (int i = 0; i < n; ++i)
             rows[std::size_t(i)] = unsorted[std::size_t(ws.keys[std::size_t(i)].second)];
@@ -639,16 +663,17 @@ LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const E
 }
 
 #define HYBRIDCD_INSTANTIATE_SMALL_LP(D)                                                                               \
-    template LpSolution<D> solveSmallLp<D>(const std::vector<Halfspace<D>> &, const Eigen::Matrix<double, D, 1> &,     \
+    template LpSolution<D> solveSmallLp<D>(LpWorkspace &, const std::vector<Halfspace<D>> &,                         \
                                            const Eigen::Matrix<double, D, 1> &, const Eigen::Matrix<double, D, 1> &,   \
-                                           double, const Eigen::Matrix<double, D, 1> *, std::uint64_t);
+                                           const Eigen::Matrix<double, D, 1> &, double,                                 \
+                                           const Eigen::Matrix<double, D, 1> *, std::uint64_t);
 HYBRIDCD_INSTANTIATE_SMALL_LP(1)
 HYBRIDCD_INSTANTIATE_SMALL_LP(2)
 HYBRIDCD_INSTANTIATE_SMALL_LP(3)
 HYBRIDCD_INSTANTIATE_SMALL_LP(4)
 #undef HYBRIDCD_INSTANTIATE_SMALL_LP
 
-IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b)
+IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &workspace)
 {
     double tolerance;
     const Frame frame = workingFrame(a, b, &tolerance);
@@ -656,7 +681,7 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
     // Rows in the working frame: (n, 1) . (x', t') <= d', A's first, each scaled to a unit
     // normal as solveSmallLp does. The rows are staged by id behind the sorted copy the solver
     // permutes, so that the dual can look up its basis rows.
-    Workspace &ws = workspace();
+    Workspace &ws = workspace.lists();
     const std::size_t faces = a.normals.size() + b.normals.size();
     if (ws.rows4.size() < 2 * faces)
         ws.rows4.resize(2 * faces);
@@ -754,15 +779,15 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
     return result;
 }
 
-bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece &b)
+bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &workspace)
 {
     const Frame frame = workingFrame(a, b);
-    thread_local std::vector<Halfspace<3>> rows;
+    std::vector<Halfspace<3>> &rows = workspace.lists().primalRows;
     rows.clear();
     const auto emit = [&](const Vec3 &n, double d) { rows.push_back({n, d}); };
     forEachScaledPlane(a, frame, emit);
     forEachScaledPlane(b, frame, emit);
-    const LpSolution<3> lp = solveSmallLp<3>(rows, Vec3::Ones(), Vec3::Constant(-kBox), Vec3::Constant(kBox),
+    const LpSolution<3> lp = solveSmallLp<3>(workspace, rows, Vec3::Ones(), Vec3::Constant(-kBox), Vec3::Constant(kBox),
                                              pairTolerance(a, b) / frame.scale);
     return lp.status == LpStatus::Optimal;
 }

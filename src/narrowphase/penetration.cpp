@@ -92,8 +92,7 @@ double directionalPenetration(const ConvexPiece &a, const Vec3 &motion, const Co
         return 0.0;
 
     // x' in B, x' + s' m in A (s' = s / scale): B's rows (n, 0), A's rows (n, n . m).
-    thread_local std::vector<Halfspace<4>> rows;
-    rows.clear();
+    std::vector<Halfspace<4>> rows;  // not on a hot path: a list per call
     appendWorkingFrameRows(rows, b, center, scale, Vec3::Zero());
     appendWorkingFrameRows(rows, a, center, scale, m);
 

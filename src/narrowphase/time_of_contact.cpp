@@ -43,8 +43,7 @@ TimeOfContact translationalTimeOfContact(const ConvexPiece &moving, const Vec3 &
     const double travel = length / scale;
     const Vec3 direction = length > 0.0 ? Vec3(displacement / length) : Vec3::Zero();
 
-    thread_local std::vector<Halfspace<4>> rows;
-    rows.clear();
+    std::vector<Halfspace<4>> rows;  // not on a hot path: a list per call
     appendWorkingFrameRows(rows, fixed, center, scale, Vec3::Zero());
     appendWorkingFrameRows(rows, moving, center, scale, -direction);
 

@@ -94,6 +94,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     ompl::base::SpaceInformation *si = si_;
     const ompl::base::StateSpacePtr &space = si->getStateSpace();
     const bool planar = validity_->planar();
+    // One context for every query of this motion (coherence between neighbouring states).
+    const QueryContextPool::Lease context = validity_->contexts().borrow();
     struct StateHolder
     {
         ompl::base::SpaceInformation *si;
@@ -116,7 +118,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         report.blockedAt = at;
         return report;
     };
-    if (validity_->poseCollides(poseOfState(s1, planar)))
+    if (validity_->poseCollides(poseOfState(s1, planar), *context))
         return contact(0.0, 0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
@@ -127,7 +129,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     double end = 1.0;  // the search for the first contact stops here
     bool contactKnown = false;
     for (unsigned k = 1; k <= n; ++k)
-        if (validity_->poseCollides(poseAt(double(k) / n)))
+        if (validity_->poseCollides(poseAt(double(k) / n), *context))
         {
             end = double(k) / n;
             contactKnown = true;
@@ -141,7 +143,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     const double speed = translationRate + robotRadius_ * angleRate;
     if (!(speed > 0.0))
     {
-        if (validity_->poseCollides(p2))
+        if (validity_->poseCollides(p2, *context))
             return contact(0.0, 1.0);
         report.free = true;
         return report;
@@ -182,12 +184,12 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
             refused = true;  // or, with a contact known, the bracket is left wider than the tolerance
             break;
         }
-        if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_))
+        if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_, *context))
         {
             certified = iv.b;  // intervals are taken in order: the free prefix grows
             continue;
         }
-        if (validity_->poseCollides(pose))
+        if (validity_->poseCollides(pose, *context))
         {
             contactAt = mid;
             if (contactAt - certified <= tolerance)
@@ -245,6 +247,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     ompl::base::SpaceInformation *si = si_;
     const ompl::base::StateSpacePtr &space = si->getStateSpace();
     const bool planar = validity_->planar();
+    // One context for every query of this motion (coherence between neighbouring states).
+    const QueryContextPool::Lease context = validity_->contexts().borrow();
     struct StateHolder
     {
         ompl::base::SpaceInformation *si;
@@ -265,7 +269,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         return report;
     };
     const RigidTransform p1 = poseOfState(s1, planar);
-    if (validity_->poseCollides(p1))
+    if (validity_->poseCollides(p1, *context))
         return contact(0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
@@ -279,12 +283,12 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     while ((1u << bits) * kRakeStride < n && bits < 20)
         ++bits;
     const std::uint64_t m = std::uint64_t(1) << bits;
-    if (validity_->poseCollides(poseAt(1.0)))
+    if (validity_->poseCollides(poseAt(1.0), *context))
         return contact(1.0);
     for (std::uint64_t i = 1; i < m; ++i)
     {
         const double tau = double(reverseBits(i, bits)) / double(m);
-        if (validity_->poseCollides(poseAt(tau)))
+        if (validity_->poseCollides(poseAt(tau), *context))
             return contact(tau);
     }
 
@@ -319,10 +323,10 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         if (++queries > kMaxQueries)
             return report;  // refused
         const RigidTransform pose = poseAt(mid);
-        if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_))
+        if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_, *context))
             continue;
         const double onGrid = mid * double(m);
-        if (onGrid != std::floor(onGrid) && validity_->poseCollides(pose))
+        if (onGrid != std::floor(onGrid) && validity_->poseCollides(pose, *context))
             return contact(mid);
         // A near contact is never accepted; nor is an interval doubles cannot split.
         if (speed * half < minimumClearance_ || !(iv.a < mid && mid < iv.b))

@@ -50,16 +50,17 @@ bool StateValidityChecker::isValid(const ompl::base::State *state) const
 
 bool StateValidityChecker::collisionFree(const ompl::base::State *state) const
 {
-    return !poseCollides(poseOfState(state, planar_));
+    return !poseCollides(poseOfState(state, planar_), *contexts_.borrow());
 }
 
 double StateValidityChecker::clearance(const ompl::base::State *state) const
 {
     const RigidTransform pose = poseOfState(state, planar_);
-    const double d = timed([&] { return checker_->distance(pose); });
+    const QueryContextPool::Lease context = contexts_.borrow();
+    const double d = timed([&] { return checker_->distance(pose, *context); });
     if (d > 0.0)
         return d;
-    return -estimatePenetration(*checker_, scene_, pose, 0).depth;
+    return -estimatePenetration(*checker_, scene_, pose, *context, 0).depth;
 }
 
 bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist) const
@@ -75,7 +76,8 @@ bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist,
     const bool valid = isValid(state, dist);
     if (valid || !validState)
         return valid;
-    const PenetrationEstimate estimate = estimatePenetration(*checker_, scene_, poseOfState(state, planar_));
+    const PenetrationEstimate estimate =
+        estimatePenetration(*checker_, scene_, poseOfState(state, planar_), *contexts_.borrow());
     if (!estimate.freePose)
         return false;
     // The pushed-out pose as a state: same orientation, new position.
@@ -89,20 +91,23 @@ bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist,
     return false;
 }
 
-bool StateValidityChecker::poseCollides(const RigidTransform &worldFromRobot) const
+bool StateValidityChecker::poseCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
-    return timed([&] { return checker_->collides(worldFromRobot); });
+    return timed([&] { return checker_->collides(worldFromRobot, context); });
 }
 
 bool StateValidityChecker::poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
-                                                   double radialSlack, double robotRadius) const
+                                                   double radialSlack, double robotRadius, QueryContext &context) const
 {
-    return timed([&] { return checker_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius); });
+    return timed([&] {
+        return checker_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, context);
+    });
 }
 
-bool StateValidityChecker::poseWithinDistance(const RigidTransform &worldFromRobot, double delta) const
+bool StateValidityChecker::poseWithinDistance(const RigidTransform &worldFromRobot, double delta,
+                                              QueryContext &context) const
 {
-    return timed([&] { return checker_->withinDistance(worldFromRobot, delta); });
+    return timed([&] { return checker_->withinDistance(worldFromRobot, delta, context); });
 }
 
 void StateValidityChecker::resetCounters()

@@ -24,7 +24,7 @@ BruteForceChecker::BruteForceChecker(CollisionScene scene)
               [](const TriangleBox &p, const TriangleBox &q) { return p.min.x() < q.min.x(); });
 }
 
-bool BruteForceChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
+bool BruteForceChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -71,12 +71,12 @@ bool BruteForceChecker::collides(const RigidTransform &worldFromRobot, QueryStat
             ++j;
         }
     }
-    if (stats)
-        stats->primitiveTests += tests;
+    context.stats.primitiveTests += tests;
     return hit;
 }
 
-std::vector<ContactPair> BruteForceChecker::contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+std::vector<ContactPair> BruteForceChecker::doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                                      QueryContext &) const
 {
     std::vector<ContactPair> found;
     if (!worldFromRobot.isFinite())
@@ -95,7 +95,7 @@ std::vector<ContactPair> BruteForceChecker::contacts(const RigidTransform &world
     return found;
 }
 
-double BruteForceChecker::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
+double BruteForceChecker::doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
     if (!worldFromRobot.isFinite())
         return 0.0;
@@ -109,8 +109,7 @@ double BruteForceChecker::distance(const RigidTransform &worldFromRobot, QuerySt
         for (std::size_t j = 0; j < env.triangleCount() && best > 0.0; ++j)
             best = std::min(best, triangleDistance(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2)));
     }
-    if (stats)
-        stats->primitiveTests += robot.triangleCount() * env.triangleCount();
+    context.stats.primitiveTests += robot.triangleCount() * env.triangleCount();
     return best;
 }
 }  // namespace hcd

@@ -8,10 +8,11 @@ namespace hcd
 namespace
 {
 // The deepest pairwise penetration among the current contacts (depth 0 when there are none).
-Penetration deepestPair(const CollisionChecker &checker, const CollisionScene &scene, const RigidTransform &pose)
+Penetration deepestPair(const CollisionChecker &checker, const CollisionScene &scene, const RigidTransform &pose,
+                        QueryContext &context)
 {
     Penetration deepest;
-    for (const ContactPair &c : checker.contacts(pose, 256))
+    for (const ContactPair &c : checker.contacts(pose, 256, context))
     {
         if (c.kind != ContactPair::Kind::Triangles)
             continue;
@@ -30,7 +31,7 @@ Penetration deepestPair(const CollisionChecker &checker, const CollisionScene &s
 }  // namespace
 
 PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
-                                        const RigidTransform &worldFromRobot, int maxSteps)
+                                        const RigidTransform &worldFromRobot, QueryContext &context, int maxSteps)
 {
     PenetrationEstimate out;
     if (!worldFromRobot.isFinite())
@@ -38,13 +39,13 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
         out.colliding = true;
         return out;
     }
-    out.colliding = checker.collides(worldFromRobot);
+    out.colliding = checker.collides(worldFromRobot, context);
     if (!out.colliding)
     {
         out.freePose = worldFromRobot;
         return out;
     }
-    const Penetration first = deepestPair(checker, scene, worldFromRobot);
+    const Penetration first = deepestPair(checker, scene, worldFromRobot, context);
     if (!first.intersecting)
         return out;  // contained in a solid: no triangle pair to push out of
     out.depth = first.depth;
@@ -57,13 +58,20 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
     for (int i = 0; i < maxSteps && step.intersecting; ++i)
     {
         pose.translation += (step.depth * (1.0 + 1e-6) + 1e-9 * scale) * step.direction;
-        if (!checker.collides(pose))
+        if (!checker.collides(pose, context))
         {
             out.freePose = pose;
             return out;
         }
-        step = deepestPair(checker, scene, pose);
+        step = deepestPair(checker, scene, pose, context);
     }
     return out;
+}
+
+PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
+                                        const RigidTransform &worldFromRobot, int maxSteps)
+{
+    QueryContext context;
+    return estimatePenetration(checker, scene, worldFromRobot, context, maxSteps);
 }
 }  // namespace hcd

@@ -40,9 +40,10 @@ bool SolidSemanticsChecker::contained(const RigidTransform &worldFromRobot) cons
     return false;
 }
 
-std::vector<ContactPair> SolidSemanticsChecker::contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+std::vector<ContactPair> SolidSemanticsChecker::doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                                          QueryContext &context) const
 {
-    std::vector<ContactPair> found = surface_->contacts(worldFromRobot, limit);
+    std::vector<ContactPair> found = surface_->contacts(worldFromRobot, limit, context);
     if (!found.empty() || limit == 0 || !worldFromRobot.isFinite())
         return found;
     for (std::size_t i = 0; i < robotRepresentatives_.size(); ++i)
@@ -65,25 +66,26 @@ std::vector<ContactPair> SolidSemanticsChecker::contacts(const RigidTransform &w
     return found;
 }
 
-bool SolidSemanticsChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
+bool SolidSemanticsChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
     if (!worldFromRobot.isFinite())
         return true;
-    return surface_->collides(worldFromRobot, stats) || contained(worldFromRobot);
+    return surface_->collides(worldFromRobot, context) || contained(worldFromRobot);
 }
 
-double SolidSemanticsChecker::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
+double SolidSemanticsChecker::doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
     if (!worldFromRobot.isFinite())
         return 0.0;
-    const double d = surface_->distance(worldFromRobot, stats);
+    const double d = surface_->distance(worldFromRobot, context);
     return d > 0.0 && contained(worldFromRobot) ? 0.0 : d;
 }
 
-bool SolidSemanticsChecker::withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
+bool SolidSemanticsChecker::doWithinDistance(const RigidTransform &worldFromRobot, double delta,
+                                             QueryContext &context) const
 {
     if (!worldFromRobot.isFinite())
         return true;
-    return surface_->withinDistance(worldFromRobot, delta, stats) || contained(worldFromRobot);
+    return surface_->withinDistance(worldFromRobot, delta, context) || contained(worldFromRobot);
 }
 }  // namespace hcd

@@ -17,12 +17,16 @@ namespace hcd
 {
 namespace
 {
-// Robot pieces mapped to world for the current query, computed on first use. Per-thread storage
-// reused across queries; stamps mark what this query has computed (as in PlacedRobot).
+// Robot pieces mapped to world for the current query, computed on first use. The storage is the
+// query context's, reused across queries; stamps mark what this query has computed (as in
+// PlacedRobot).
 class PlacedPieces
 {
 public:
-    explicit PlacedPieces(const RigidTransform &pose) : s_(scratch()), query_(++s_.query), pose_(pose) {}
+    PlacedPieces(const RigidTransform &pose, QueryContext &context)
+        : s_(context.scratch<Scratch>()), query_(++s_.query), pose_(pose)
+    {
+    }
 
     const ConvexPiece &piece(std::uint32_t node, const ConvexPiece &local)
     {
@@ -36,11 +40,6 @@ private:
         StampedSlots<ConvexPiece> pieces;
         std::uint64_t query = 0;
     };
-    static Scratch &scratch()
-    {
-        thread_local Scratch s;
-        return s;
-    }
     Scratch &s_;
     std::uint64_t query_;
     RigidTransform pose_;
@@ -90,28 +89,31 @@ double VolumeTreeChecker<Volume>::toleranceFor(const RigidTransform &worldFromRo
 }
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
+bool VolumeTreeChecker<Volume>::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
-    return anyPairWithin(worldFromRobot, {}, stats);
+    return anyPairWithin(worldFromRobot, {}, context);
 }
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats) const
+bool VolumeTreeChecker<Volume>::doWithinDistance(const RigidTransform &worldFromRobot, double delta,
+                                                 QueryContext &context) const
 {
-    return anyPairWithin(worldFromRobot, {std::max(0.0, delta), 0.0}, stats);
+    return anyPairWithin(worldFromRobot, {std::max(0.0, delta), 0.0}, context);
 }
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
-                                                    double radialSlack, double robotRadius, QueryStats *stats) const
+bool VolumeTreeChecker<Volume>::doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
+                                                      double radialSlack, double robotRadius,
+                                                      QueryContext &context) const
 {
     (void)robotRadius;  // per-node reaches are tighter than the robot's radius
-    return anyPairWithin(worldFromRobot, {std::max(0.0, translationSlack), std::max(0.0, radialSlack)}, stats);
+    return anyPairWithin(worldFromRobot, {std::max(0.0, translationSlack), std::max(0.0, radialSlack)}, context);
 }
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryStats *stats,
-                                              std::vector<ContactPair> *found, std::size_t limit) const
+bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, Slack slack,
+                                              QueryContext &context, std::vector<ContactPair> *found,
+                                              std::size_t limit) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -125,8 +127,8 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
-    PlacedRobot<Volume> placed(robotTree_, worldFromRobot);
-    PlacedPieces placedPieces(worldFromRobot);
+    PlacedRobot<Volume> placed(robotTree_, worldFromRobot, context);
+    PlacedPieces placedPieces(worldFromRobot, context);
 
     std::uint64_t boxTests = 0, triangleTests = 0, pieceTests = 0;
     bool hit = false;
@@ -154,7 +156,8 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 const std::int32_t rp = robotPieces_.pieceOfNode[pair.robot];
                 const std::int32_t ep = environmentPieces_.pieceOfNode[pair.environment];
                 const IntersectionResult lp =
-                    intersectConvexPieces(placedPieces.piece(pair.robot, robotPieces_.pieces[rp]), environmentPieces_.pieces[ep]);
+                    intersectConvexPieces(placedPieces.piece(pair.robot, robotPieces_.pieces[rp]),
+                                          environmentPieces_.pieces[ep], context.lp());
                 ++pieceTests;
                 if (!lp.intersecting)
                     continue;
@@ -220,20 +223,18 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             stack.push({pair.robot, std::uint32_t(en.firstChild)});
         }
     }
-    if (stats)
-    {
-        stats->boundingVolumeTests += boxTests;
-        stats->primitiveTests += triangleTests + pieceTests;
-    }
+    context.stats.boundingVolumeTests += boxTests;
+    context.stats.primitiveTests += triangleTests + pieceTests;
     return hit;
 }
 
 template <class Volume>
-std::vector<ContactPair> VolumeTreeChecker<Volume>::contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+std::vector<ContactPair> VolumeTreeChecker<Volume>::doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                                               QueryContext &context) const
 {
     std::vector<ContactPair> found;
     if (limit > 0 && worldFromRobot.isFinite())
-        anyPairWithin(worldFromRobot, {}, nullptr, &found, limit);
+        anyPairWithin(worldFromRobot, {}, context, &found, limit);
     for (ContactPair &c : found)
         if (c.kind == ContactPair::Kind::Triangles)
         {
@@ -244,13 +245,13 @@ std::vector<ContactPair> VolumeTreeChecker<Volume>::contacts(const RigidTransfor
 }
 
 template <class Volume>
-double VolumeTreeChecker<Volume>::distance(const RigidTransform &worldFromRobot, QueryStats *stats) const
+double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
     if (!worldFromRobot.isFinite())
         return 0.0;
     if (robotTree_.empty() || environmentTree_.empty())
         return std::numeric_limits<double>::infinity();
-    if (collides(worldFromRobot, stats))
+    if (doCollides(worldFromRobot, context))
         return 0.0;
 
     // Branch and bound: descend pairs whose box lower bound is below the best distance found yet,
@@ -259,7 +260,7 @@ double VolumeTreeChecker<Volume>::distance(const RigidTransform &worldFromRobot,
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
-    PlacedRobot<Volume> placed(robotTree_, worldFromRobot);
+    PlacedRobot<Volume> placed(robotTree_, worldFromRobot, context);
     double best = std::numeric_limits<double>::infinity();
     std::uint64_t boxTests = 0, triangleTests = 0;
     const auto lowerBound = [&](const NodePair &p) {
@@ -312,11 +313,8 @@ double VolumeTreeChecker<Volume>::distance(const RigidTransform &worldFromRobot,
         if (!(nearer.bound >= best))
             stack.push(nearer);
     }
-    if (stats)
-    {
-        stats->boundingVolumeTests += boxTests;
-        stats->primitiveTests += triangleTests;
-    }
+    context.stats.boundingVolumeTests += boxTests;
+    context.stats.primitiveTests += triangleTests;
     return best;
 }
 

@@ -18,11 +18,12 @@ public:
     explicit FclChecker(const CollisionScene &scene);
     ~FclChecker() override;
     std::string name() const override { return "fcl"; }
-    bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
 
 private:
+    bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+
     struct Models;
     std::unique_ptr<Models> models_;
 };

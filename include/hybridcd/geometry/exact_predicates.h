@@ -21,6 +21,7 @@ int orient3d(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d);
 /// turn counter-clockwise.
 int orient2d(double ax, double ay, double bx, double by, double cx, double cy);
 
-/// Counts how often the exact fallback ran in this thread (for tests and benchmarks).
+/// How often the exact fallback has run in this process, all threads together (for tests and
+/// benchmarks: compare two readings taken around single-threaded work).
 unsigned long long exactPredicateFallbacks();
 }  // namespace hcd

@@ -31,7 +31,7 @@
 // earlier faces, become rare; a violated face also moves to the front of its level (move-to-front,
 // which leaves the optimum unchanged). The box rows of a subproblem go last. Together: about
 // 1.7 us for two 20-face pieces, against 21 us in random order. No allocation per call (a
-// per-thread workspace). The two-dimensional level solves its one-dimensional subproblems in place.
+// workspace the caller owns, LpWorkspace). The two-dimensional level solves its one-dimensional subproblems in place.
 //
 // Robustness. Coordinates are first translated to the pieces' mid-centroid and scaled to unit
 // size, and each constraint's normal is normalised, so that one absolute tolerance means the
@@ -63,6 +63,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace hcd
@@ -82,6 +83,24 @@ struct Halfspace
 /// directional penetration are both LPs over such rows.
 void appendWorkingFrameRows(std::vector<Halfspace<4>> &rows, const ConvexPiece &piece, const Vec3 &center, double scale,
                             const Vec3 &motion);
+
+/// Scratch memory of the LP solver: row lists that only grow, so that once warm no solve
+/// allocates. Owned by the caller (a QueryContext holds one) and used by one solve at a time;
+/// the overloads without one make a fresh workspace per call.
+class LpWorkspace
+{
+public:
+    LpWorkspace();
+    ~LpWorkspace();
+    LpWorkspace(LpWorkspace &&) noexcept;
+    LpWorkspace &operator=(LpWorkspace &&) noexcept;
+
+    struct Lists;  // defined by the solver
+    Lists &lists() { return *lists_; }
+
+private:
+    std::unique_ptr<Lists> lists_;
+};
 
 /// Whether a small LP has a solution (it is never unbounded: the box bounds every variable).
 enum class LpStatus
@@ -124,23 +143,34 @@ struct LpSolution
 /// is only proven for the random order; ties go by index).
 /// Instantiated for D = 1, 2, 3, 4.
 template <int D>
+LpSolution<D> solveSmallLp(LpWorkspace &workspace, const std::vector<Halfspace<D>> &constraints,
+                           const Eigen::Matrix<double, D, 1> &objective, const Eigen::Matrix<double, D, 1> &lower,
+                           const Eigen::Matrix<double, D, 1> &upper, double tolerance,
+                           const Eigen::Matrix<double, D, 1> *orderHint = nullptr,
+                           std::uint64_t seed = 0x2545F4914F6CDD1DULL);
+
+/// solveSmallLp with a workspace of its own (allocates; for one-off solves).
+template <int D>
 LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const Eigen::Matrix<double, D, 1> &objective,
                            const Eigen::Matrix<double, D, 1> &lower, const Eigen::Matrix<double, D, 1> &upper,
                            double tolerance, const Eigen::Matrix<double, D, 1> *orderHint = nullptr,
-                           std::uint64_t seed = 0x2545F4914F6CDD1DULL);
+                           std::uint64_t seed = 0x2545F4914F6CDD1DULL)
+{
+    LpWorkspace workspace;
+    return solveSmallLp<D>(workspace, constraints, objective, lower, upper, tolerance, orderHint, seed);
+}
 
-extern template LpSolution<1> solveSmallLp<1>(const std::vector<Halfspace<1>> &, const Eigen::Matrix<double, 1, 1> &,
-                                              const Eigen::Matrix<double, 1, 1> &, const Eigen::Matrix<double, 1, 1> &,
-                                              double, const Eigen::Matrix<double, 1, 1> *, std::uint64_t);
-extern template LpSolution<2> solveSmallLp<2>(const std::vector<Halfspace<2>> &, const Eigen::Matrix<double, 2, 1> &,
-                                              const Eigen::Matrix<double, 2, 1> &, const Eigen::Matrix<double, 2, 1> &,
-                                              double, const Eigen::Matrix<double, 2, 1> *, std::uint64_t);
-extern template LpSolution<3> solveSmallLp<3>(const std::vector<Halfspace<3>> &, const Eigen::Matrix<double, 3, 1> &,
-                                              const Eigen::Matrix<double, 3, 1> &, const Eigen::Matrix<double, 3, 1> &,
-                                              double, const Eigen::Matrix<double, 3, 1> *, std::uint64_t);
-extern template LpSolution<4> solveSmallLp<4>(const std::vector<Halfspace<4>> &, const Eigen::Matrix<double, 4, 1> &,
-                                              const Eigen::Matrix<double, 4, 1> &, const Eigen::Matrix<double, 4, 1> &,
-                                              double, const Eigen::Matrix<double, 4, 1> *, std::uint64_t);
+#define HYBRIDCD_DECLARE_SMALL_LP(D)                                                                                   \
+    extern template LpSolution<D> solveSmallLp<D>(LpWorkspace &, const std::vector<Halfspace<D>> &,                  \
+                                                  const Eigen::Matrix<double, D, 1> &,                                \
+                                                  const Eigen::Matrix<double, D, 1> &,                                \
+                                                  const Eigen::Matrix<double, D, 1> &, double,                        \
+                                                  const Eigen::Matrix<double, D, 1> *, std::uint64_t);
+HYBRIDCD_DECLARE_SMALL_LP(1)
+HYBRIDCD_DECLARE_SMALL_LP(2)
+HYBRIDCD_DECLARE_SMALL_LP(3)
+HYBRIDCD_DECLARE_SMALL_LP(4)
+#undef HYBRIDCD_DECLARE_SMALL_LP
 
 /// The narrow phase's tolerance, relative to the largest absolute vertex coordinate of the pair.
 constexpr double kNarrowPhaseRelativeTolerance = 1e-9;
@@ -181,14 +211,25 @@ struct IntersectionResult
 /// Exact intersection test of two convex pieces given in one frame by the slack LP above (a 4D
 /// Seidel LP over the faces of both). Touching pieces count as intersecting. Preconditions:
 /// both pieces non-empty, as `ConvexPiece::hullOf` (or `transformed`) builds them.
-IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b);
+IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &workspace);
+/// intersectConvexPieces with a workspace of its own (allocates; for one-off tests).
+inline IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b)
+{
+    LpWorkspace workspace;
+    return intersectConvexPieces(a, b, workspace);
+}
 
 /// The review's plain primal: feasibility of the union of both pieces' inequalities as a 3D LP
 /// (objective x + y + z, random constraint order), the same tolerance applied to the
 /// constraints. Cheaper than the slack LP (three dimensions instead of four) but it decides by
 /// the solver's infeasibility test and gives neither a centred witness nor a separating plane;
 /// kept to measure against the slack formulation (bench/micro/lp_micro.cpp).
-bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece &b);
+bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &workspace);
+inline bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece &b)
+{
+    LpWorkspace workspace;
+    return convexPiecesIntersectPrimal(a, b, workspace);
+}
 
 /// The separating-axis test: the largest gap, over the candidate axes, between the projections
 /// of the pieces' vertices (face normals of both, cross products of every pair of edges, and for

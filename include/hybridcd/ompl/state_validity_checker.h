@@ -3,6 +3,7 @@
 #pragma once
 
 #include "hybridcd/query/collision_checker.h"
+#include "hybridcd/query/query_context_pool.h"
 
 #include <ompl/base/StateValidityChecker.h>
 
@@ -42,11 +43,16 @@ public:
     bool isValid(const ompl::base::State *state, double &dist) const override;
     using ompl::base::StateValidityChecker::isValid;
 
-    /// Counted and timed forms of the checker's queries for a pose, for the motion validator.
-    bool poseCollides(const RigidTransform &worldFromRobot) const;
-    bool poseWithinDistance(const RigidTransform &worldFromRobot, double delta) const;
+    /// Counted and timed forms of the checker's queries for a pose, for the motion validator,
+    /// made with the caller's context (one per thread: see contexts()).
+    bool poseCollides(const RigidTransform &worldFromRobot, QueryContext &context) const;
+    bool poseWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const;
     bool poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
-                                 double robotRadius) const;
+                                 double robotRadius, QueryContext &context) const;
+
+    /// The contexts this checker's own queries borrow (OMPL calls it from any thread); callers
+    /// that make many queries in a row, such as a motion validator, borrow one for all of them.
+    QueryContextPool &contexts() const { return contexts_; }
 
     const CollisionChecker &checker() const { return *checker_; }
     bool planar() const { return planar_; }
@@ -64,6 +70,7 @@ private:
     std::shared_ptr<const CollisionChecker> checker_;
     CollisionScene scene_;
     bool planar_;
+    mutable QueryContextPool contexts_;
     mutable std::atomic<std::uint64_t> checks_{0};
     mutable std::atomic<std::uint64_t> nanoseconds_{0};
 };

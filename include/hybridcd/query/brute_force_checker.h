@@ -16,11 +16,13 @@ class BruteForceChecker final : public CollisionChecker
 public:
     explicit BruteForceChecker(CollisionScene scene);
     std::string name() const override { return "bruteforce"; }
-    bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
 
 private:
+    bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                        QueryContext &context) const override;
+
     struct TriangleBox
     {
         Vec3 min, max;

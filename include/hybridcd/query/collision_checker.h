@@ -4,6 +4,7 @@
 
 #include "hybridcd/geometry/collision_scene.h"
 #include "hybridcd/geometry/rigid_transform.h"
+#include "hybridcd/query/query_context.h"
 
 #include <cstdint>
 #include <limits>
@@ -13,13 +14,6 @@
 
 namespace hcd
 {
-/// Work counters a query may fill (optional; a null pointer skips counting).
-struct QueryStats
-{
-    std::uint64_t boundingVolumeTests = 0;
-    std::uint64_t primitiveTests = 0;
-};
-
 /// One intersecting part pair found by a contact query: the paper's "intersecting parts".
 struct ContactPair
 {
@@ -51,6 +45,8 @@ struct HierarchyReport
 
 /// Answers "does the robot at this pose touch the environment?". Touching counts as collision.
 /// Implementations are immutable after construction and safe to query from many threads at once.
+/// Each query takes the caller's QueryContext (scratch, counters, coherence), one per thread; the
+/// forms without one make a fresh context per call, which allocates: use them for one-off queries.
 class CollisionChecker
 {
 public:
@@ -61,38 +57,48 @@ public:
 
     /// True when the robot placed by `worldFromRobot` shares a point with the environment.
     /// A non-finite pose is reported as a collision (it can never be shown to be free).
-    virtual bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const = 0;
+    bool collides(const RigidTransform &worldFromRobot, QueryContext &context) const
+    {
+        return doCollides(worldFromRobot, context);
+    }
+    bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const;
 
     /// Distance between the robot placed by `worldFromRobot` and the environment: 0 when they touch
     /// (decided exactly), otherwise the smallest triangle-to-triangle distance (floating point,
     /// relative error of a few ulps). Infinite when either mesh is empty; 0 for a non-finite pose.
-    virtual double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const = 0;
-
-    /// Every intersecting part pair at this pose, up to `limit` of them (empty when free). The
-    /// default implementation reports nothing; hierarchical and brute-force checkers override it.
-    virtual std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const
+    double distance(const RigidTransform &worldFromRobot, QueryContext &context) const
     {
-        (void)worldFromRobot;
-        (void)limit;
-        return {};
+        return doDistance(worldFromRobot, context);
     }
+    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const;
+
+    /// Every intersecting part pair at this pose, up to `limit` of them (empty when free). Checkers
+    /// without contact reporting give none; hierarchical and brute-force checkers report them.
+    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                      QueryContext &context) const
+    {
+        return doContacts(worldFromRobot, limit, context);
+    }
+    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const;
 
     /// Proximity: true when the distance may be at most `delta` (so false proves distance > delta).
-    /// Touching gives true for any delta >= 0. Hierarchical checkers override this with an early exit.
-    virtual bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const
+    /// Touching gives true for any delta >= 0.
+    bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const
     {
-        return distance(worldFromRobot, stats) <= delta;
+        return doWithinDistance(worldFromRobot, delta, context);
     }
+    bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const;
 
     /// Swept proximity: false proves that no robot point p (robot frame) comes within
     /// `translationSlack + radialSlack * |p|` of the environment at this pose, which is how far p can
-    /// move during a motion interval (translation plus rotation about the robot origin). The default
-    /// uses the robot's radius for every point; hierarchical checkers use each part's own reach.
-    virtual bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
-                                     double robotRadius, QueryStats *stats = nullptr) const
+    /// move during a motion interval (translation plus rotation about the robot origin).
+    bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                             double robotRadius, QueryContext &context) const
     {
-        return withinDistance(worldFromRobot, translationSlack + radialSlack * robotRadius, stats);
+        return doWithinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, context);
     }
+    bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                             double robotRadius, QueryStats *stats = nullptr) const;
 
     /// Hierarchies built for this checker (empty for brute force). `withVolumeRatios` also measures
     /// the node/content volume ratios (costly: a convex hull per sampled node).
@@ -110,6 +116,29 @@ public:
         (void)level;
         (void)obj;
         return false;
+    }
+
+private:
+    // What each checker implements; the public forms above call these.
+    virtual bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const = 0;
+    virtual double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const = 0;
+    virtual std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                                QueryContext &context) const
+    {
+        (void)worldFromRobot, (void)limit, (void)context;
+        return {};
+    }
+    /// Hierarchical checkers override this with an early exit.
+    virtual bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const
+    {
+        return doDistance(worldFromRobot, context) <= delta;
+    }
+    /// The default uses the robot's radius for every point; hierarchical checkers use each part's
+    /// own reach.
+    virtual bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
+                                       double radialSlack, double robotRadius, QueryContext &context) const
+    {
+        return doWithinDistance(worldFromRobot, translationSlack + radialSlack * robotRadius, context);
     }
 };
 }  // namespace hcd

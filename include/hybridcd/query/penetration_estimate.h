@@ -27,5 +27,9 @@ struct PenetrationEstimate
 /// Estimates the penetration at `worldFromRobot` and searches (at most `maxSteps` push-outs) for a
 /// free pose by translation. For a free pose: colliding = false and freePose = the pose itself.
 PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
+                                        const RigidTransform &worldFromRobot, QueryContext &context,
+                                        int maxSteps = 20);
+/// The same with a fresh context (allocates; for one-off queries).
+PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
                                         const RigidTransform &worldFromRobot, int maxSteps = 20);
 }  // namespace hcd

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "hybridcd/bvh/volume_tree.h"
+#include "hybridcd/query/query_context.h"
 #include "hybridcd/query/stamped_slots.h"
 
 #include <array>
@@ -18,16 +19,16 @@ struct PlacedTriangle
     Vec3 min, max;
 };
 
-/// View of one query's robot placement. Storage is per thread and reused across queries (stamps
-/// mark what this query has computed), so concurrent queries never share scratch and nothing is
-/// allocated per query once a thread has warmed up. One PlacedRobot per volume type may be alive
-/// per thread at a time; constructing a new one invalidates the previous one.
+/// View of one query's robot placement. Its storage is the query context's, reused across queries
+/// (stamps mark what this query has computed), so nothing is allocated per query once the context
+/// has warmed up. One PlacedRobot per volume type may be alive per context at a time:
+/// constructing a new one invalidates the previous one.
 template <class Volume>
 class PlacedRobot
 {
 public:
-    PlacedRobot(const VolumeTree<Volume> &tree, const RigidTransform &worldFromRobot)
-        : tree_(tree), pose_(worldFromRobot), s_(scratch()), query_(++s_.query)
+    PlacedRobot(const VolumeTree<Volume> &tree, const RigidTransform &worldFromRobot, QueryContext &context)
+        : tree_(tree), pose_(worldFromRobot), s_(context.scratch<Scratch>()), query_(++s_.query)
     {
         s_.volumes.reserve(tree.nodes().size());
         s_.triangles.reserve(tree.mesh().triangleCount());
@@ -61,11 +62,6 @@ private:
         StampedSlots<PlacedTriangle> triangles;
         std::uint64_t query = 0;
     };
-    static Scratch &scratch()
-    {
-        thread_local Scratch s;
-        return s;
-    }
 
     const VolumeTree<Volume> &tree_;
     RigidTransform pose_;

@@ -30,20 +30,6 @@ public:
     SolidSemanticsChecker(std::unique_ptr<CollisionChecker> surface, const CollisionScene &scene);
 
     std::string name() const override { return surface_->name(); }
-    bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    /// 0 when the surfaces touch or one object is inside the other; otherwise the surface distance.
-    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
-    bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
-                             double robotRadius, QueryStats *stats = nullptr) const override
-    {
-        if (!worldFromRobot.isFinite())
-            return true;
-        return surface_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, stats) ||
-               contained(worldFromRobot);
-    }
-    /// The surface contacts, or else a containment record (witness: the contained vertex).
-    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override
     {
         return surface_->hierarchies(withVolumeRatios);
@@ -57,6 +43,22 @@ public:
     const SolidQuery &robotSolids() const { return robotSolids_; }
 
 private:
+    bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    /// 0 when the surfaces touch or one object is inside the other; otherwise the surface distance.
+    double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
+    bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                               double robotRadius, QueryContext &context) const override
+    {
+        if (!worldFromRobot.isFinite())
+            return true;
+        return surface_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, context) ||
+               contained(worldFromRobot);
+    }
+    /// The surface contacts, or else a containment record (witness: the contained vertex).
+    std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                        QueryContext &context) const override;
+
     std::unique_ptr<CollisionChecker> surface_;
     SolidQuery environmentSolids_;
     SolidQuery robotSolids_;

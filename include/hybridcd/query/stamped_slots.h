@@ -9,7 +9,7 @@ namespace hcd
 {
 /// Slots indexed by element (node, triangle, piece), each holding a value computed during one
 /// query. A slot is current when its stamp equals the query's id, so nothing is cleared between
-/// queries and storage is reused once it has grown. Meant to live in per-thread storage.
+/// queries and storage is reused once it has grown. Lives in a QueryContext.
 template <class T>
 class StampedSlots
 {

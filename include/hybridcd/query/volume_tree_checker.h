@@ -35,13 +35,6 @@ public:
     VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles = 1,
                       std::optional<PieceStage> pieces = std::nullopt);
     std::string name() const override { return name_; }
-    bool collides(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const override;
-    bool withinDistance(const RigidTransform &worldFromRobot, double delta, QueryStats *stats = nullptr) const override;
-    /// Uses each node's and triangle's own reach from the robot origin instead of the robot radius.
-    bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
-                             double robotRadius, QueryStats *stats = nullptr) const override;
-    std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit) const override;
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
     bool exportLevel(int level, std::ostream &obj) const override;
 
@@ -52,7 +45,15 @@ public:
     const ConvexDecomposition &environmentPieces() const { return environmentPieces_; }
 
 private:
-    /// Collision (delta = 0, exact triangle test) or proximity (delta > 0) with early exit.
+    bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
+    /// Uses each node's and triangle's own reach from the robot origin instead of the robot radius.
+    bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                               double robotRadius, QueryContext &context) const override;
+    std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                        QueryContext &context) const override;
+
     /// How far a robot part at distance r from the robot origin may be from where the pose puts it.
     struct Slack
     {
@@ -63,7 +64,7 @@ private:
 
     /// Collision (zero slack, exact triangle test) or proximity (distance at most the slack) with
     /// an early exit; with `found`, every contact is recorded (up to `limit`) instead.
-    bool anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryStats *stats,
+    bool anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryContext &context,
                        std::vector<ContactPair> *found = nullptr, std::size_t limit = 0) const;
     double toleranceFor(const RigidTransform &worldFromRobot) const;
 
