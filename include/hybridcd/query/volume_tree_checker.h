@@ -16,7 +16,7 @@ namespace hcd
 /// leaves an exact axis-aligned reject, then the exact triangle test. So the answer equals
 /// BruteForceChecker's whatever the volume. Instantiated for every volume in volume_traits.h.
 /// The LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is
-/// tested by linear programming before any triangle. Exact mode (tolerance < 0): an LP "disjoint"
+/// tested by linear programming before any triangle. Exact mode (no tolerance): an LP "disjoint"
 /// rejects the leaf pair, an LP "intersecting" is confirmed by the exact triangle tests.
 /// Approximate mode (tolerance T >= 0): a pair of pieces whose approximation bounds (how far any
 /// point of a hull may be from its triangles) add up to at most T decides alone, so contact may be
@@ -24,7 +24,7 @@ namespace hcd
 struct PieceStage
 {
     unsigned leafTriangles = 8;
-    double approximateTolerance = -1.0;
+    std::optional<double> approximateTolerance;
 };
 
 template <class Volume>
