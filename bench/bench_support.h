@@ -1,15 +1,43 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// What the benchmark programs share: medians, and the states a sampling planner would draw.
+// What the benchmark programs share: the command line, medians, and the states a sampling planner
+// would draw.
 #pragma once
 
+#include "command_line.h"
+
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
+
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <functional>
+#include <iostream>
 #include <vector>
 
 namespace hcd::bench
 {
+/// Parses argv into `app` (declared through `cl`), then runs `body`: --help and --version end
+/// the run with 0, misuse (in parsing or a UsageError from `body`) with 1, other errors with 1.
+inline int runProgram(CLI::App &app, const cli::CommandLine &cl, int argc, char **argv, const std::function<int()> &body)
+{
+    if (const auto status = cli::parseArguments(app, argc, argv))
+        return *status;
+    try
+    {
+        return body();
+    }
+    catch (const cli::UsageError &e)
+    {
+        return cli::reportUsageError(cl, e.what());
+    }
+    catch (const std::exception &e)
+    {
+        std::cerr << app.get_name() << ": error: " << e.what() << '\n';
+        return 1;
+    }
+}
+
 /// Median of the values (the upper one of the middle pair for an even count).
 inline double median(std::vector<double> values)
 {

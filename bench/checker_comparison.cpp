@@ -7,17 +7,17 @@
 // positive answers differ when the robot is inside a closed obstacle, which FCL calls free).
 //
 //   hybridcd_bench_checkers [--states N] [--seed S] [--checker obb,fcl,...] [--no-reference] [--distance] PROBLEM.cfg...
+//   (--help lists the options and the checkers)
 #include "bench_support.h"
 
 #include "hybridcd/fcl/fcl_checker.h"
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
@@ -30,55 +30,43 @@ using hcd::bench::median;
 
 namespace
 {
-
-std::vector<std::string> split(const std::string &s)
-{
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ','))
-        out.push_back(item);
-    return out;
-}
+int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers);
 }  // namespace
 
 int main(int argc, char **argv)
 {
-    std::size_t stateCount = 20000;
-    std::uint_fast32_t seed = 1;
-    std::string checkers = "obb,fcl";
-    bool reference = true;
-    bool distance = false;
-    std::vector<std::string> problems;
-    for (int i = 1; i < argc; ++i)
-    {
-        const std::string a = argv[i];
-        if (a == "--states" && i + 1 < argc)
-            stateCount = std::stoul(argv[++i]);
-        else if (a == "--seed" && i + 1 < argc)
-            seed = std::uint_fast32_t(std::stoul(argv[++i]));
-        else if (a == "--checker" && i + 1 < argc)
-            checkers = argv[++i];
-        else if (a == "--no-reference")
-            reference = false;
-        else if (a == "--distance")
-            distance = true;
-        else if (a.rfind("--", 0) == 0)
-        {
-            std::cerr << "usage: " << argv[0]
-                      << " [--states N] [--seed S] [--checker a,b,...] [--no-reference] [--distance] PROBLEM.cfg...\n";
-            return 1;
-        }
-        else
-            problems.push_back(a);
-    }
-    registerFclChecker();
+    const CheckerCatalogue checkers = checkersWithFcl();
+    CLI::App app("Time per collision check of each checker on the same uniform random states, as a Markdown table.",
+                 "hybridcd_bench_checkers");
+    cli::configureApp(app);
+    cli::CommandLine cl(app);
+    cl.positionals("PROBLEM.cfg", "the problems, one table row per problem and checker")
+        .option("states", "N", "random states per problem (default 20000)")
+        .option("seed", "N", "seed of OMPL's random numbers (default 1)")
+        .option("checker", "NAME[,NAME...]", "the checkers (default obb,fcl)")
+        .flag("no-reference", "skip the brute-force reference (no disagreement count)")
+        .flag("distance", "time distance() (FCL: fcl::distance) instead of collision checks")
+        .footer("\nExample:\n  hybridcd_bench_checkers --states 5000 --checker obb,lp,fcl problems/window_3d.cfg\n\n" +
+                cli::checkerHelp(checkers));
+    return bench::runProgram(app, cl, argc, argv, [&] { return run(cl, checkers); });
+}
+
+namespace
+{
+int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
+{
+    const std::size_t stateCount = std::size_t(cl.positiveInteger("states", 20000));
+    const std::uint_fast32_t seed = cl.has("seed") ? cli::seedOf(cl) : 1;
+    const std::vector<std::string> names = cli::checkerNamesOf(cl, checkers, {}, "obb,fcl");
+    const bool distance = cl.has("distance");
+    // Brute-force distance is quadratic: with --distance, checkers are compared with the first instead.
+    const bool reference = !cl.has("no-reference") && !distance;
+    const std::vector<std::string> &problems = cl.positionals();
+    if (problems.empty())
+        throw cli::UsageError("missing the problem files (.cfg)");
     ompl::RNG::setSeed(seed);
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
-    const std::vector<std::string> names = split(checkers);
-    if (distance)
-        reference = false;  // brute-force distance is quadratic; checkers are compared with the first instead
     std::cout << "| problem | checker | median ns/" << (distance ? "distance" : "check") << " | mean ns/"
               << (distance ? "distance" : "check") << " | median vs fcl | in collision | "
               << (distance ? "differences from " + (names.empty() ? std::string("-") : names.front())
@@ -93,7 +81,7 @@ int main(int argc, char **argv)
         std::vector<char> truth;
         if (reference)
         {
-            const auto bf = makeChecker("bruteforce", problem.scene);
+            const auto bf = checkers.make("bruteforce", problem.scene);
             for (const RigidTransform &p : poses)
                 truth.push_back(bf->collides(p));
         }
@@ -103,7 +91,7 @@ int main(int argc, char **argv)
         for (const std::string &name : names)
         {
             const auto buildStart = std::chrono::steady_clock::now();
-            const auto checker = makeChecker(name, problem.scene);
+            const auto checker = checkers.make(name, problem.scene);
             const double buildMs =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
             std::vector<double> ns(poses.size());
@@ -165,3 +153,4 @@ int main(int argc, char **argv)
     }
     return 0;
 }
+}  // namespace

@@ -13,7 +13,7 @@
 #include "hybridcd/fcl/fcl_checker.h"
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/util/RandomNumbers.h>
@@ -54,25 +54,16 @@ Timing timeAll(const std::vector<std::pair<ob::State *, ob::State *>> &motions, 
 }
 }  // namespace
 
-int main(int argc, char **argv)
+namespace
 {
-    std::size_t count = 2000;
-    std::uint_fast32_t seed = 1;
-    bool touchingPass = true;
-    std::vector<std::string> problems;
-    for (int i = 1; i < argc; ++i)
-    {
-        const std::string a = argv[i];
-        if (a == "--motions" && i + 1 < argc)
-            count = std::stoul(argv[++i]);
-        else if (a == "--no-touching")
-            touchingPass = false;
-        else if (a == "--seed" && i + 1 < argc)
-            seed = std::uint_fast32_t(std::stoul(argv[++i]));
-        else
-            problems.push_back(a);
-    }
-    registerFclChecker();
+int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
+{
+    const std::size_t count = std::size_t(cl.positiveInteger("motions", 2000));
+    const std::uint_fast32_t seed = cl.has("seed") ? cli::seedOf(cl) : 1;
+    const bool touchingPass = !cl.has("no-touching");
+    const std::vector<std::string> &problems = cl.positionals();
+    if (problems.empty())
+        throw cli::UsageError("missing the problem files (.cfg)");
     ompl::RNG::setSeed(seed);
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     std::cout << "| problem | validator | state checker | median us/motion | vs discrete+fcl | mean us/motion | "
@@ -80,9 +71,9 @@ int main(int argc, char **argv)
     for (const std::string &cfg : problems)
     {
         const LoadedProblem problem = loadProblem(cfg);
-        PlanningProblem obb = makePlanningProblem(problem, makeChecker("obb", problem.scene), MotionCheck::Continuous);
-        PlanningProblem fcl = makePlanningProblem(problem, makeChecker("fcl", problem.scene), MotionCheck::Discrete);
-        PlanningProblem obbDiscrete = makePlanningProblem(problem, makeChecker("obb", problem.scene), MotionCheck::Discrete);
+        PlanningProblem obb = makePlanningProblem(problem, checkers.make("obb", problem.scene), MotionCheck::Continuous);
+        PlanningProblem fcl = makePlanningProblem(problem, checkers.make("fcl", problem.scene), MotionCheck::Discrete);
+        PlanningProblem obbDiscrete = makePlanningProblem(problem, checkers.make("obb", problem.scene), MotionCheck::Discrete);
         for (auto *p : {&obb, &fcl, &obbDiscrete})
             p->setup->setup();
         const auto si = obb.setup->getSpaceInformation();
@@ -110,7 +101,7 @@ int main(int argc, char **argv)
             return obbDiscrete.setup->getSpaceInformation()->checkMotion(a, b);
         });
         // Touching: brute force at 20x OMPL's resolution finds a contact.
-        const auto reference = makeChecker("bruteforce", problem.scene);
+        const auto reference = checkers.make("bruteforce", problem.scene);
         ob::State *s = si->allocState();
         std::vector<char> touching;
         for (const auto &[a, b] : motions)
@@ -150,4 +141,21 @@ int main(int argc, char **argv)
         }
     }
     return 0;
+}
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    const CheckerCatalogue checkers = checkersWithFcl();
+    CLI::App app("Time per motion of the continuous and discrete validators on the same random motions, as a "
+                 "Markdown table.",
+                 "hybridcd_bench_motions");
+    cli::configureApp(app);
+    cli::CommandLine cl(app);
+    cl.positionals("PROBLEM.cfg", "the problems, one table block per problem")
+        .option("motions", "N", "random motions per problem (default 2000)")
+        .option("seed", "N", "seed of OMPL's random numbers (default 1)")
+        .flag("no-touching", "skip the brute-force pass (the last column then reads '-')")
+        .footer("\nExample:\n  hybridcd_bench_motions --motions 500 --no-touching problems/window_3d.cfg\n");
+    return bench::runProgram(app, cl, argc, argv, [&] { return run(cl, checkers); });
 }

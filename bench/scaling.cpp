@@ -8,7 +8,7 @@
 
 #include "hybridcd/fcl/fcl_checker.h"
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/util/RandomNumbers.h>
 
@@ -50,28 +50,14 @@ TriangleMesh subdivide(const TriangleMesh &in)
 
 }  // namespace
 
-int main(int argc, char **argv)
+namespace
 {
-    std::size_t maxTriangles = 1100000, stateCount = 2000;
-    std::string checkers = "obb,fcl", cfg;
-    for (int i = 1; i < argc; ++i)
-    {
-        const std::string a = argv[i];
-        if (a == "--max-triangles" && i + 1 < argc)
-            maxTriangles = std::stoul(argv[++i]);
-        else if (a == "--states" && i + 1 < argc)
-            stateCount = std::stoul(argv[++i]);
-        else if (a == "--checker" && i + 1 < argc)
-            checkers = argv[++i];
-        else
-            cfg = a;
-    }
-    if (cfg.empty())
-    {
-        std::cerr << "usage: " << argv[0] << " [--max-triangles N] [--states N] [--checker a,b] PROBLEM.cfg\n";
-        return 1;
-    }
-    registerFclChecker();
+int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
+{
+    const std::size_t maxTriangles = std::size_t(cl.positiveInteger("max-triangles", 1100000));
+    const std::size_t stateCount = std::size_t(cl.positiveInteger("states", 2000));
+    const std::vector<std::string> names = cli::checkerNamesOf(cl, checkers, {}, "obb,fcl");
+    const std::string &cfg = cl.problem();
     ompl::RNG::setSeed(1);
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
@@ -90,14 +76,12 @@ int main(int argc, char **argv)
         scene.robot = std::make_shared<const TriangleMesh>(robot);
         std::map<std::string, double> medians;
         std::vector<std::string> rows;
-        std::stringstream names(checkers);
-        std::string name;
         std::vector<std::string> order;
-        while (std::getline(names, name, ','))
+        for (const std::string &name : names)
         {
             order.push_back(name);
             const auto t0 = std::chrono::steady_clock::now();
-            const auto checker = makeChecker(name, scene);
+            const auto checker = checkers.make(name, scene);
             const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             std::size_t bytes = 0;
             for (const HierarchyReport &h : checker->hierarchies())
@@ -129,4 +113,22 @@ int main(int argc, char **argv)
             robot = subdivide(robot);
     }
     return 0;
+}
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    const CheckerCatalogue checkers = checkersWithFcl();
+    CLI::App app("Build time, memory and time per check as the meshes are subdivided, per checker, as a Markdown "
+                 "table.",
+                 "hybridcd_bench_scaling");
+    cli::configureApp(app);
+    cli::CommandLine cl(app);
+    cl.positionals("PROBLEM.cfg", "the problem whose meshes are subdivided")
+        .option("max-triangles", "N", "stop above N environment triangles (default 1100000)")
+        .option("states", "N", "random states per size (default 2000)")
+        .option("checker", "NAME[,NAME...]", "the checkers (default obb,fcl)")
+        .footer("\nExample:\n  hybridcd_bench_scaling --max-triangles 100000 --checker obb,fcl problems/window_3d.cfg\n\n" +
+                cli::checkerHelp(checkers));
+    return bench::runProgram(app, cl, argc, argv, [&] { return run(cl, checkers); });
 }

@@ -9,7 +9,7 @@
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/planners/planner_catalogue.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/RandomNumbers.h>
@@ -22,17 +22,6 @@ namespace hcd::cli
 {
 namespace
 {
-std::vector<std::string> splitList(const std::string &text)
-{
-    std::vector<std::string> items;
-    std::stringstream s(text);
-    std::string item;
-    while (std::getline(s, item, ','))
-        if (!item.empty())
-            items.push_back(item);
-    return items;
-}
-
 // "I/N" with 0 <= I < N.
 std::pair<unsigned, unsigned> parseShard(const std::string &text)
 {
@@ -60,15 +49,34 @@ struct CheckerSlot
 };
 }  // namespace
 
-int runBench(const std::vector<std::string> &args)
+void declareBench(CommandLine &cl)
 {
-    const CommandLine cl(args, withCommonOptions({"checker", "runs", "time", "memory", "shard", "out", "planner", "motion", "seed"}),
-                          {"surface-only"});
+    cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format); its [benchmark] section gives the defaults")
+        .option("planner", "NAME[,NAME...]", "the planners (default: the .cfg's, else rrtconnect)")
+        .option("runs", "N", "runs per planner and checker (default: the .cfg's run_count)")
+        .option("time", "SECONDS", "time limit per run (default: the .cfg's time_limit)")
+        .option("memory", "MB", "memory limit per run (default: the .cfg's mem_limit)")
+        .option("shard", "I/N", "do only the runs whose index is I modulo N (0 <= I < N)")
+        .option("out", "FILE.log", "the benchmark log (default NAME.log, or NAME.shardI.log)")
+        .option("motion", "continuous|discrete", "how motions are checked (default continuous)")
+        .option("seed", "N", "seed OMPL's random numbers (1 to 4294967295)");
+    addCheckerOptions(cl, true);
+    cl.footer(R"(
+Writes an OMPL benchmark log, readable by ompl_benchmark_statistics.
+Examples:
+  hybridcd bench problems/window_3d.cfg --checker obb,fcl --runs 20 --time 10
+  hybridcd bench problems/window_3d.cfg --runs 100 --shard 0/4 --out window.shard0.log
+)");
+}
+
+int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
     if (cl.has("seed"))
         ompl::RNG::setSeed(seedOf(cl));
     const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));
     const auto [shardIndex, shardCount] = parseShard(cl.text("shard", "0/1"));
     const CheckerOptions checkerOptions = checkerOptionsOf(cl);
+    const std::vector<std::string> checkerNames = checkerNamesOf(cl, checkers, checkerOptions);
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
 
@@ -96,10 +104,8 @@ int runBench(const std::vector<std::string> &args)
         requests.push_back({"rrtconnect", "", {}});
 
     std::vector<CheckerSlot> slots;
-    for (const std::string &name : splitList(cl.text("checker", "obb")))
-        slots.push_back({name, makeChecker(name, problem.scene, checkerOptions), nullptr});
-    if (slots.empty())
-        throw UsageError("--checker needs at least one checker name");
+    for (const std::string &name : checkerNames)
+        slots.push_back({name, checkers.make(name, problem.scene, checkerOptions), nullptr});
 
     PlanningProblem planning = makePlanningProblem(problem, slots.front().checker, motion);
     requireCollisionFreeStartAndGoal(problem, planning);

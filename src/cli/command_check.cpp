@@ -6,7 +6,7 @@
 
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/io/problem_scene.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <chrono>
 #include <iomanip>
@@ -15,15 +15,28 @@
 
 namespace hcd::cli
 {
-int runCheck(const std::vector<std::string> &args)
+void declareCheck(CommandLine &cl)
 {
-    const CommandLine cl(args, withCommonOptions({"states", "checker"}), {"surface-only"});
+    cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
+        .option("states", "FILE", "the poses, one per line as in a .path file (required)");
+    addCheckerOptions(cl, false);
+    cl.footer(R"(
+Prints 1 (collision-free) or 0 (colliding) per pose on stdout, and a summary on stderr.
+Examples:
+  hybridcd check problems/window_3d.cfg --states poses.path
+  hybridcd check problems/window_3d.cfg --states poses.path --checker lp --mode approximate --tolerance 0.01
+)");
+}
+
+int runCheck(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
     if (!cl.has("states"))
         throw UsageError("check needs --states FILE");
     const CheckerOptions options = checkerOptionsOf(cl);
+    const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
     const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, options);
+    const auto checker = checkers.make(checkerName, problem.scene, options);
 
     std::string out;
     out.reserve(poses.size() * 2);
@@ -47,16 +60,29 @@ int runCheck(const std::vector<std::string> &args)
 
 namespace hcd::cli
 {
-int runContacts(const std::vector<std::string> &args)
+void declareContacts(CommandLine &cl)
 {
-    const CommandLine cl(args, withCommonOptions({"states", "checker", "limit"}), {"surface-only"});
+    cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
+        .option("states", "FILE", "the poses, one per line as in a .path file (required)")
+        .option("limit", "N", "report at most N contacts per pose (default 1000)");
+    addCheckerOptions(cl, false);
+    cl.footer(R"(
+Examples:
+  hybridcd contacts problems/window_3d.cfg --states poses.path
+  hybridcd contacts problems/window_3d.cfg --states poses.path --limit 10 --surface-only
+)");
+}
+
+int runContacts(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
     if (!cl.has("states"))
         throw UsageError("contacts needs --states FILE");
     const long long limit = cl.positiveInteger("limit", 1000);
     const CheckerOptions options = checkerOptionsOf(cl);
+    const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
     const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, options);
+    const auto checker = checkers.make(checkerName, problem.scene, options);
     std::ostringstream out;
     out << std::setprecision(10);
     QueryContext context;

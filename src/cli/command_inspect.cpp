@@ -8,7 +8,7 @@
 #include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/io/problem_scene.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <chrono>
 #include <iomanip>
@@ -67,10 +67,23 @@ void describeMesh(const char *role, const std::string &file, const LoadedMesh &m
 }
 }  // namespace
 
-int runInspect(const std::vector<std::string> &args)
+void declareInspect(CommandLine &cl)
 {
-    const CommandLine cl(args, withCommonOptions({"checker", "level", "export"}), {"surface-only"});
+    cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
+        .option("level", "K", "the tree level --export writes (default 0, the root)")
+        .option("export", "FILE.obj", "write the volumes of tree level K as a mesh");
+    addCheckerOptions(cl, true);
+    cl.footer(R"(
+Examples:
+  hybridcd inspect problems/window_3d.cfg --checker obb,ellipsoid,lp
+  hybridcd inspect problems/window_3d.cfg --level 3 --export level3.obj
+)");
+}
+
+int runInspect(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
     const CheckerOptions checkerOptions = checkerOptionsOf(cl);
+    const std::vector<std::string> checkerNames = checkerNamesOf(cl, checkers, checkerOptions);
     const long long level = cl.integer("level", 0);
     if (level < 0)
         throw UsageError("option --level needs a non-negative tree level, got '" + cl.text("level", "") + "'");
@@ -85,12 +98,10 @@ int runInspect(const std::vector<std::string> &args)
     describeMesh("robot", cfg.robotMesh, problem.robot);
     describeMesh("environment", cfg.worldMesh, problem.world);
 
-    std::stringstream names(cl.text("checker", "obb"));
-    std::string name;
-    while (std::getline(names, name, ','))
+    for (const std::string &name : checkerNames)
     {
         const auto start = std::chrono::steady_clock::now();
-        const auto checker = makeChecker(name, problem.scene, checkerOptions);
+        const auto checker = checkers.make(name, problem.scene, checkerOptions);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::cout << "checker " << checker->name() << ": built in " << seconds * 1e3 << " ms\n";
         for (const HierarchyReport &h : checker->hierarchies(true))

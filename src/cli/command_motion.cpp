@@ -7,7 +7,7 @@
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/query/penetration_estimate.h"
 
 #include <ompl/base/SpaceInformation.h>
@@ -62,10 +62,23 @@ void recordToState(const PoseRecord &r, bool planar, ompl::base::State *state)
 }
 }  // namespace
 
-int runCheckMotion(const std::vector<std::string> &args)
+void declareCheckMotion(CommandLine &cl)
 {
-    const CommandLine cl(args, withCommonOptions({"motions", "checker", "contact-tolerance"}),
-                         {"surface-only", "verdict-only"});
+    cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
+        .option("motions", "FILE", "two poses per line, start then end (required)")
+        .option("contact-tolerance", "FRACTION", "bracket the first contact to this fraction of the motion, in (0, 1] (default 1e-6)")
+        .flag("verdict-only", "only 1 or 0 per motion, stopping at the first contact seen (as a planner checks)");
+    addCheckerOptions(cl, false);
+    cl.footer(R"(
+Prints 1 (free) or 0 T per motion, T the last free fraction before contact.
+Examples:
+  hybridcd check-motion problems/window_3d.cfg --motions motions.txt
+  hybridcd check-motion problems/window_3d.cfg --motions motions.txt --verdict-only
+)");
+}
+
+int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
     if (!cl.has("motions"))
         throw UsageError("check-motion needs --motions FILE");
     // A fraction of the motion: zero would bisect without end, more than 1 says nothing.
@@ -74,9 +87,10 @@ int runCheckMotion(const std::vector<std::string> &args)
         throw UsageError("option --contact-tolerance needs a fraction of the motion in (0, 1], got '" +
                          cl.text("contact-tolerance", "") + "'");
     const CheckerOptions options = checkerOptionsOf(cl);
+    const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
     const auto motions = readMotions(cl.text("motions", ""), problem.config.planar);
-    PlanningProblem planning = makePlanningProblem(problem, makeChecker(cl.text("checker", "obb"), problem.scene, options),
+    PlanningProblem planning = makePlanningProblem(problem, checkers.make(checkerName, problem.scene, options),
                                                    MotionCheck::Continuous);
     const auto si = planning.setup->getSpaceInformation();
     auto validator = std::dynamic_pointer_cast<ContinuousMotionValidator>(si->getMotionValidator());
@@ -115,21 +129,34 @@ int runCheckMotion(const std::vector<std::string> &args)
     si->freeState(b);
     si->freeState(last);
     std::cout << out.str() << std::flush;
-    std::cerr << "checked " << motions.size() << " motions with '" << cl.text("checker", "obb") << "': " << free
+    std::cerr << "checked " << motions.size() << " motions with '" << checkerName << "': " << free
               << " free, " << motions.size() - free << " colliding; mean "
               << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion\n";
     return kSuccess;
 }
 
-int runClearance(const std::vector<std::string> &args)
+void declareClearance(CommandLine &cl)
 {
-    const CommandLine cl(args, withCommonOptions({"states", "checker"}), {"surface-only"});
+    cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
+        .option("states", "FILE", "the poses, one per line as in a .path file (required)");
+    addCheckerOptions(cl, false);
+    cl.footer(R"(
+Prints the distance to the environment per pose; colliding poses get minus a penetration estimate.
+Examples:
+  hybridcd clearance problems/window_3d.cfg --states poses.path
+  hybridcd clearance problems/window_3d.cfg --states poses.path --checker bruteforce
+)");
+}
+
+int runClearance(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
     if (!cl.has("states"))
         throw UsageError("clearance needs --states FILE");
     const CheckerOptions options = checkerOptionsOf(cl);
+    const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
     const auto poses = readPoses(cl.text("states", ""), problem.config.planar);
-    const auto checker = makeChecker(cl.text("checker", "obb"), problem.scene, options);
+    const auto checker = checkers.make(checkerName, problem.scene, options);
     std::ostringstream out;
     out << std::setprecision(std::numeric_limits<double>::max_digits10);
     // Free: the exact distance. Colliding: minus the penetration estimate (0 when contained in a

@@ -9,7 +9,7 @@
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/planners/planner_catalogue.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/Console.h>
@@ -42,9 +42,26 @@ std::vector<std::pair<std::string, std::string>> parseParams(const std::string &
 }
 }  // namespace
 
-int runSolve(const std::vector<std::string> &args)
+void declareSolve(CommandLine &cl)
 {
-    const CommandLine cl(args, withCommonOptions({"planner", "time", "seed", "checker", "out", "param", "motion"}), {"verbose", "surface-only"});
+    cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
+        .option("planner", "NAME", "the OMPL planner (default rrtconnect); 'help' lists them")
+        .option("time", "SECONDS", "the planning time limit (default 10)")
+        .option("seed", "N", "seed OMPL's random numbers (1 to 4294967295) for a repeatable run")
+        .option("out", "PATH_FILE", "where to write the path (default NAME.solution.path here)")
+        .option("param", "KEY=VALUE[,...]", "planner parameters, e.g. range=5,intermediate_states=1")
+        .option("motion", "continuous|discrete", "how motions are checked (default continuous)")
+        .flag("verbose", "OMPL's progress messages");
+    addCheckerOptions(cl, false);
+    cl.footer(R"(
+Examples:
+  hybridcd solve problems/window_3d.cfg --seed 1 --time 30
+  hybridcd solve problems/corridor_2d.cfg --planner kpiece --param range=5 --out corridor.path
+)");
+}
+
+int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
     if (cl.text("planner", "") == "help")
     {
         for (const std::string &n : plannerNames())
@@ -59,6 +76,7 @@ int runSolve(const std::vector<std::string> &args)
         ompl::msg::setLogLevel(ompl::msg::LOG_INFO);
     const double timeLimit = cl.positiveNumber("time", 10.0);
     const CheckerOptions checkerOptions = checkerOptionsOf(cl);
+    const std::string checkerName = checkerNamesOf(cl, checkers, checkerOptions).front();
     const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));
     const auto params = parseParams(cl.text("param", ""));
 
@@ -68,9 +86,8 @@ int runSolve(const std::vector<std::string> &args)
     checkOutputPath(outPath, cl.has("out") ? "--out" : "the default output", inputFilesOf(problem));
     requireStartAndGoalInVolume(problem.config);
 
-    const std::string checkerName = cl.text("checker", "obb");
     const auto buildStart = std::chrono::steady_clock::now();
-    std::shared_ptr<const CollisionChecker> checker = makeChecker(checkerName, problem.scene, checkerOptions);
+    std::shared_ptr<const CollisionChecker> checker = checkers.make(checkerName, problem.scene, checkerOptions);
     const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
 
     PlanningProblem planning = makePlanningProblem(problem, checker, motion);

@@ -1,19 +1,29 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The hybridcd subcommands. Each takes the arguments after its name and returns the exit status.
+// The hybridcd subcommands. Each declares its options on a CommandLine (with examples for its
+// --help), then runs on the parsed options and returns the exit status.
 #pragma once
 
-#include <string>
-#include <vector>
+#include "command_line.h"
+
+#include "hybridcd/query/checker_catalogue.h"
 
 namespace hcd::cli
 {
-int runSolve(const std::vector<std::string> &args);
-int runCheck(const std::vector<std::string> &args);
-int runInspect(const std::vector<std::string> &args);
-int runBench(const std::vector<std::string> &args);
-int runCheckMotion(const std::vector<std::string> &args);
-int runClearance(const std::vector<std::string> &args);
-int runContacts(const std::vector<std::string> &args);
+void declareSolve(CommandLine &cl);
+void declareCheck(CommandLine &cl);
+void declareInspect(CommandLine &cl);
+void declareBench(CommandLine &cl);
+void declareCheckMotion(CommandLine &cl);
+void declareClearance(CommandLine &cl);
+void declareContacts(CommandLine &cl);
+
+int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers);
+int runCheck(const CommandLine &cl, const CheckerCatalogue &checkers);
+int runInspect(const CommandLine &cl, const CheckerCatalogue &checkers);
+int runBench(const CommandLine &cl, const CheckerCatalogue &checkers);
+int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers);
+int runClearance(const CommandLine &cl, const CheckerCatalogue &checkers);
+int runContacts(const CommandLine &cl, const CheckerCatalogue &checkers);
 
 /// Exit statuses shared by all commands.
 enum ExitStatus

@@ -8,84 +8,108 @@
 #include "hybridcd/fcl/fcl_checker.h"
 #endif
 
+#include <CLI/CLI.hpp>
 #include <ompl/util/Console.h>
 
 #include <iostream>
+#include <memory>
 
 namespace
 {
-const char *kUsage = R"(usage: hybridcd COMMAND PROBLEM.cfg [options]
+using namespace hcd::cli;
 
-commands:
-  solve    plan a path: [--planner NAME] [--time SECONDS] [--seed N] [--checker NAME]
-           [--out PATH_FILE] [--param KEY=VALUE,...] [--motion continuous|discrete]
-           [--verbose]
-  check    classify poses: --states FILE [--checker NAME]   (prints 1 free / 0 colliding per pose)
-  check-motion  continuous motion checks: --motions FILE [--checker NAME] [--contact-tolerance FRACTION]
-           (two poses per line; prints 1 free, or 0 T with T the last free fraction before contact)
-  clearance  distance to the environment per pose (negative: penetration): --states FILE [--checker NAME]
-  contacts  intersecting triangles/pieces per pose with a witness point: --states FILE [--checker NAME]
-           [--limit N]
-  inspect  describe meshes and hierarchies: [--checker NAME[,NAME...]]
-           [--level K --export FILE.obj]  (write the volumes of tree level K as a mesh)
-  bench    OMPL benchmark log: [--checker NAME[,NAME...]] [--planner NAME[,NAME...]] [--runs N]
-           [--time SECONDS] [--memory MB] [--shard I/N] [--out FILE.log] [--motion ...] [--seed N]
+struct Command
+{
+    const char *name;
+    const char *summary;
+    void (*declare)(CommandLine &);
+    int (*run)(const CommandLine &, const hcd::CheckerCatalogue &);
+};
 
-Every command takes --max-triangles N (meshes above N triangles, default 2000000, are refused).
+const Command kCommands[] = {
+    {"solve", "plan a path and write it in OMPL.app's .path format", declareSolve, runSolve},
+    {"check", "classify poses: 1 free, 0 colliding, one line per pose", declareCheck, runCheck},
+    {"check-motion", "continuous motion checks: 1 free, or 0 and the last free fraction", declareCheckMotion,
+     runCheckMotion},
+    {"clearance", "distance to the environment per pose (negative: penetration)", declareClearance, runClearance},
+    {"contacts", "intersecting triangles or pieces per pose, with a witness point", declareContacts, runContacts},
+    {"inspect", "describe the meshes and the hierarchies each checker builds", declareInspect, runInspect},
+    {"bench", "OMPL benchmark log of planners and checkers (optionally one shard)", declareBench, runBench},
+};
+
+const char *kNotes = R"(Every command takes a problem file (OMPL.app's .cfg) and prints its own options and examples with
+'hybridcd COMMAND --help'; planners are listed by 'hybridcd solve PROBLEM.cfg --planner help'.
 Exit status: 0 success, 1 bad input or options (nothing is written), 2 solve found no path in time.
-Output files are written to a temporary file and renamed into place; solve's default output is
-NAME.solution.path in the current folder, and no output may replace the .cfg or its meshes.
-
-Checkers: obb (default), lp (convex pieces tested by linear programming; --mode exact|approximate
---tolerance T), bruteforce, fcl (when built with FCL).
+Output files are written to a temporary file and renamed into place; no output may replace the
+.cfg or its meshes.
 Closed mesh components are solids (containment is contact); --surface-only treats meshes as
-surfaces only, as FCL does (fcl always does). Planners: see 'hybridcd solve --planner help'.
+surfaces only, as FCL does (fcl always does).
+
 )";
-}
+}  // namespace
 
 int main(int argc, char **argv)
 {
-    std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help")
-    {
-        std::cout << kUsage;
-        return args.empty() ? hcd::cli::kBadInput : hcd::cli::kSuccess;
-    }
-    const std::string command = args[0];
-    args.erase(args.begin());
-    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 #ifdef HYBRIDCD_HAVE_FCL
-    hcd::registerFclChecker();
+    const hcd::CheckerCatalogue checkers = hcd::checkersWithFcl();
+#else
+    const hcd::CheckerCatalogue checkers = hcd::CheckerCatalogue::builtIn();
 #endif
-    try
+    CLI::App app("hybridcd: exact collision checking for OMPL rigid-body planning", "hybridcd");
+    configureApp(app);
+    app.set_version_flag("--version", std::string("hybridcd ") + HYBRIDCD_VERSION, "Print the version and exit");
+    app.require_subcommand(1);
+    std::vector<std::unique_ptr<CommandLine>> lines;
+    for (const Command &c : kCommands)
     {
-        if (command == "solve")
-            return hcd::cli::runSolve(args);
-        if (command == "check")
-            return hcd::cli::runCheck(args);
-        if (command == "inspect")
-            return hcd::cli::runInspect(args);
-        if (command == "bench")
-            return hcd::cli::runBench(args);
-        if (command == "check-motion")
-            return hcd::cli::runCheckMotion(args);
-        if (command == "clearance")
-            return hcd::cli::runClearance(args);
-        if (command == "contacts")
-            return hcd::cli::runContacts(args);
-        throw hcd::cli::UsageError("unknown command '" + command + "'");
+        lines.push_back(std::make_unique<CommandLine>(*app.add_subcommand(c.name, c.summary)));
+        c.declare(*lines.back());
+        lines.back()->footer("\n" + checkerHelp(checkers));
     }
-    catch (const hcd::cli::UsageError &e)
+    app.footer(kNotes + checkerHelp(checkers));  // after the commands, which would inherit it
+
+    // No arguments: the overview, as a reminder, but not a success. "help [COMMAND]" as --help.
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty())
     {
-        std::cerr << "hybridcd: " << e.what() << "\n\n" << kUsage;
+        std::cout << app.help();
+        return kBadInput;
     }
-    catch (const hcd::InputError &e)
+    if (args[0] == "help" && args.size() <= 2)
     {
-        std::cerr << "hybridcd: error: " << e.what() << '\n';
+        if (args.size() == 1)
+        {
+            std::cout << app.help();
+            return kSuccess;
+        }
+        args.erase(args.begin());
+        args.push_back("--help");
+        std::vector<char *> words{argv[0]};
+        for (std::string &a : args)
+            words.push_back(a.data());
+        return parseArguments(app, int(words.size()), words.data()).value_or(kSuccess);
     }
-    catch (const std::exception &e)
+    if (const auto status = parseArguments(app, argc, argv))
+        return *status;
+
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    for (std::size_t i = 0; i < lines.size(); ++i)
     {
-        std::cerr << "hybridcd: error: " << e.what() << '\n';
+        if (!app.got_subcommand(kCommands[i].name))
+            continue;
+        try
+        {
+            return kCommands[i].run(*lines[i], checkers);
+        }
+        catch (const UsageError &e)
+        {
+            return reportUsageError(*lines[i], e.what());
+        }
+        catch (const std::exception &e)
+        {
+            std::cerr << "hybridcd: error: " << e.what() << '\n';
+            return kBadInput;
+        }
     }
-    return hcd::cli::kBadInput;
+    return kBadInput;  // parseArguments requires a command
 }

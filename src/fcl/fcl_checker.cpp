@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/fcl/fcl_checker.h"
 
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -98,9 +98,16 @@ std::vector<HierarchyReport> FclChecker::hierarchies(bool) const
             report("environment FCL OBBRSS tree", *models_->environment, models_->environmentSeconds)};
 }
 
-void registerFclChecker()
+CheckerEntry fclCheckerEntry()
 {
-    registerChecker(
-        "fcl", [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<FclChecker>(s); }, true);
+    return {"fcl", "FCL's OBBRSS trees as OMPL.app sets them up; meshes are surfaces (for comparisons)",
+            [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<FclChecker>(s); }, true, false};
+}
+
+CheckerCatalogue checkersWithFcl()
+{
+    CheckerCatalogue catalogue = CheckerCatalogue::builtIn();
+    catalogue.add(fclCheckerEntry());
+    return catalogue;
 }
 }  // namespace hcd

@@ -161,9 +161,9 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 ++pieceTests;
                 if (!lp.intersecting)
                     continue;
-                const double t = pieceStage_->approximateTolerance;
+                const std::optional<double> &t = pieceStage_->approximateTolerance;
                 // Hulls that meet put the triangles within the sum of the two bounds of each other.
-                if (t >= 0.0 && robotPieces_.approximationBound[rp] + environmentPieces_.approximationBound[ep] <= t)
+                if (t && robotPieces_.approximationBound[rp] + environmentPieces_.approximationBound[ep] <= *t)
                 {
                     if (!found)
                         hit = true;

@@ -3,13 +3,17 @@
 #include "support/test_support.h"
 
 #include "hybridcd/io/path_file.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
+#ifdef HYBRIDCD_HAVE_FCL
+#include "hybridcd/fcl/fcl_checker.h"
+#endif
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -82,7 +86,9 @@ TEST(Cli, BadInputGivesClearErrorsAndNonZeroExit)
         {"check " + problem3d() + " --states " + nanPose, "nan.path:2: 'nan' is not a finite number"},
         {"check " + problem3d() + " --states /no/such/file", "/no/such/file"},
         {"solve /no/such/problem.cfg", "/no/such/problem.cfg"},
-        {"frobnicate", "unknown command"},
+        {"frobnicate", "unknown command 'frobnicate'"},
+        {"check " + problem3d() + " --states " + nanPose + " --checker obb --mode approximate --tolerance 0.1",
+         "checker 'obb' has no approximate mode"},
         {"solve " + problem3d() + " --time abc", "--time needs a finite number"},
     };
     for (const Case &c : cases)
@@ -166,4 +172,108 @@ TEST(Cli, ClearanceAndCheckMotion)
     ASSERT_EQ(verdict.status, 0) << verdict.output;
     EXPECT_EQ(verdict.output.substr(0, 4), "0\n1\n") << verdict.output;
     EXPECT_NE(verdict.output.find("us per motion"), std::string::npos) << verdict.output;
+}
+
+TEST(Cli, EveryCommandHasHelpWithItsOptionsAndExamples)
+{
+    const std::map<std::string, std::vector<std::string>> commands = {
+        {"solve", {"--planner", "--time", "--seed", "--out", "--param", "--motion", "--verbose"}},
+        {"check", {"--states"}},
+        {"check-motion", {"--motions", "--contact-tolerance", "--verdict-only"}},
+        {"clearance", {"--states"}},
+        {"contacts", {"--states", "--limit"}},
+        {"inspect", {"--level", "--export"}},
+        {"bench", {"--planner", "--runs", "--time", "--memory", "--shard", "--out", "--motion", "--seed"}},
+    };
+    for (const auto &[command, options] : commands)
+        for (const std::string &form : {command + " --help", "help " + command})
+        {
+            const CliRun r = run(form);
+            EXPECT_EQ(r.status, 0) << form << "\n" << r.output;
+            std::vector<std::string> expected = options;
+            for (const char *common : {"--checker", "--surface-only", "--mode", "--tolerance", "--max-triangles",
+                                       "Examples:", "hybridcd " })
+                expected.push_back(common);
+            expected.push_back("hybridcd " + command + " ");
+            for (const std::string &text : expected)
+                EXPECT_NE(r.output.find(text), std::string::npos) << form << ": no '" << text << "'\n" << r.output;
+        }
+    const CliRun overview = run("--help");
+    EXPECT_EQ(overview.status, 0) << overview.output;
+    for (const auto &[command, options] : commands)
+        EXPECT_NE(overview.output.find("  " + command + " "), std::string::npos) << command << "\n" << overview.output;
+    // Without any argument: the overview too, but as a failure.
+    const CliRun bare = run("");
+    EXPECT_EQ(bare.status, 1);
+    EXPECT_NE(bare.output.find("solve"), std::string::npos) << bare.output;
+}
+
+TEST(Cli, VersionIsTheProjectVersion)
+{
+    const CliRun r = run("--version");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output, std::string("hybridcd ") + HYBRIDCD_VERSION + "\n");
+}
+
+TEST(Cli, HelpListsEveryCheckerOfTheCatalogueWithItsDescription)
+{
+#ifdef HYBRIDCD_HAVE_FCL
+    const CheckerCatalogue catalogue = checkersWithFcl();
+#else
+    const CheckerCatalogue catalogue = CheckerCatalogue::builtIn();
+#endif
+    for (const char *form : {"--help", "check --help"})
+    {
+        const CliRun r = run(form);
+        ASSERT_EQ(r.status, 0) << r.output;
+        for (const CheckerEntry &e : catalogue.entries())
+            EXPECT_NE(r.output.find("  " + e.name + " "), std::string::npos) << form << ": " << e.name << "\n" << r.output;
+        for (const CheckerEntry &e : catalogue.entries())
+            EXPECT_NE(r.output.find(e.description), std::string::npos) << form << ": " << e.name << "\n" << r.output;
+    }
+}
+
+TEST(Cli, TyposGetASuggestionAndExitOne)
+{
+    struct Case
+    {
+        std::string args, expected;
+    };
+    const Case cases[] = {
+        {"chek " + problem3d(), "unknown command 'chek', did you mean 'check'?"},
+        {"slove " + problem3d(), "unknown command 'slove', did you mean 'solve'?"},
+        {"check " + problem3d() + " --stats poses.path", "unknown option --stats, did you mean --states?"},
+        {"solve " + problem3d() + " --tiem 3", "unknown option --tiem, did you mean --time?"},
+        {"solve " + problem3d() + " --seeed=3", "unknown option --seeed, did you mean --seed?"},
+        {"check " + problem3d() + " --states poses.path --checker obbb", "did you mean 'obb'?"},
+    };
+    for (const Case &c : cases)
+    {
+        const CliRun r = run(c.args);
+        EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find("--help"), std::string::npos) << "points to --help: " << c.args << "\n" << r.output;
+    }
+}
+
+TEST(Cli, UnknownOptionsAndStrayArgumentsExitOne)
+{
+    struct Case
+    {
+        std::string args, expected;
+    };
+    const Case cases[] = {
+        {"inspect " + problem3d() + " --frobnicate", "unknown option --frobnicate"},
+        {"--frobnicate", "hybridcd: "},
+        {"solve " + problem3d() + " --time", "--time"},
+        {"inspect " + problem3d() + " " + problem3d(), "expected one problem file, got 2"},
+        {"inspect", "missing the problem file"},
+    };
+    for (const Case &c : cases)
+    {
+        const CliRun r = run(c.args);
+        EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find("--help"), std::string::npos) << c.args << "\n" << r.output;
+    }
 }

@@ -2,7 +2,7 @@
 // The core library alone, without OMPL: built with `pkg-config --cflags --libs hybridcd` only.
 // Usage: core_only PROBLEM.cfg; exits 0 when the start pose is collision-free, as it must be.
 #include "hybridcd/io/problem_scene.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <iostream>
 

@@ -4,7 +4,7 @@
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/planners/planner_catalogue.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <iostream>
 #include <memory>

@@ -6,7 +6,7 @@
 // colliding, and at tolerance 0 it agrees with the reference exactly.
 #include "hybridcd/io/mesh_loader.h"
 #include "hybridcd/narrowphase/convex_decomposition.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/query/leaf_decomposition.h"
 #include "support/test_support.h"
 
@@ -643,6 +643,6 @@ TEST(ConvexDecomposition, ApproximateModeInsideAnOpenHull)
     CheckerOptions options;
     options.approximateTolerance = 1e-6;
     const bool approximate = makeChecker("lp", scene, options)->collides(pose);
-    EXPECT_FALSE(approximate && distance > options.approximateTolerance)
-        << "contact reported at true distance " << distance << " with T = " << options.approximateTolerance;
+    EXPECT_FALSE(approximate && distance > *options.approximateTolerance)
+        << "contact reported at true distance " << distance << " with T = " << *options.approximateTolerance;
 }

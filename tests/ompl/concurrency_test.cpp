@@ -7,7 +7,7 @@
 
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 #ifdef HYBRIDCD_HAVE_FCL
 #include "hybridcd/fcl/fcl_checker.h"
 #endif
@@ -57,10 +57,10 @@ Answers ask(const PlanningProblem &planning, const ob::State *a, const ob::State
     return r;
 }
 
-void storm(const std::string &checkerName)
+void storm(const CheckerCatalogue &catalogue, const std::string &checkerName)
 {
     const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
-    PlanningProblem planning = makePlanningProblem(problem, makeChecker(checkerName, problem.scene));
+    PlanningProblem planning = makePlanningProblem(problem, catalogue.make(checkerName, problem.scene));
     planning.setup->setup();
     const auto si = planning.setup->getSpaceInformation();
     dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator()).setContactTolerance(1e-6);
@@ -121,11 +121,13 @@ void storm(const std::string &checkerName)
 TEST(Concurrency, EveryCheckerAnswersEveryQueryFromEightThreadsAsSerially)
 {
 #ifdef HYBRIDCD_HAVE_FCL
-    registerFclChecker();
+    const CheckerCatalogue catalogue = checkersWithFcl();
+#else
+    const CheckerCatalogue catalogue = CheckerCatalogue::builtIn();
 #endif
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : catalogue.names())
     {
         SCOPED_TRACE(name);
-        storm(name);
+        storm(catalogue, name);
     }
 }

@@ -5,7 +5,7 @@
 
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/spaces/SE3StateSpace.h>

@@ -4,7 +4,7 @@
 
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/planners/planner_catalogue.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/RandomNumbers.h>

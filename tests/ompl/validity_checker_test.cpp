@@ -2,7 +2,7 @@
 #include "support/test_support.h"
 
 #include "hybridcd/ompl/planning_problem.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/base/spaces/SE3StateSpace.h>
 

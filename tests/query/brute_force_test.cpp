@@ -7,7 +7,7 @@
 
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <gtest/gtest.h>
 
@@ -130,7 +130,7 @@ TEST(BruteForce, NonFinitePosesCollideForEveryChecker)
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
     Mat3 nanRotation = Mat3::Identity();
     nanRotation(1, 2) = nan;
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         const auto checker = makeChecker(name, s);
         for (const RigidTransform &pose : {RigidTransform{Mat3::Identity(), Vec3(nan, 0, 0)},

@@ -6,7 +6,7 @@
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/io/path_file.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <gtest/gtest.h>
 
@@ -42,7 +42,7 @@ void checkProblem(const std::string &cfg, std::size_t poseCount)
     test::TestRandom rng(2024);
     const auto poses = test::randomPoses(problem, poseCount, rng);
     const auto reference = makeChecker("bruteforce", problem.scene);
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         if (name == "bruteforce")
             continue;
@@ -99,7 +99,7 @@ TEST(CheckerAgreement, SampleSolutionPathsAreCollisionFree)
                 continue;  // pipedream's world mesh is not shipped
             }
             const auto poses = readPoses(entry.path().string(), problem.config.planar);
-            for (const std::string &name : checkerNames())
+            for (const std::string &name : CheckerCatalogue::builtIn().names())
             {
                 // The O(pairs) reference is too slow on the largest meshes here. Under sanitizers only
                 // `obb` is built: fitting every hierarchy of every problem (ellipsoids, convex pieces)
@@ -124,7 +124,7 @@ TEST(CheckerAgreement, ExactTouchingCountsAsCollision)
     // Unit cubes: a face-to-face contact is a collision, one ulp of gap is not.
     const CollisionScene scene = sceneOf(test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)),
                                          test::boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1)));
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         const auto checker = makeChecker(name, scene);
         const double touch = -0.5, gap = std::nextafter(-0.5, -1.0);
@@ -152,7 +152,7 @@ TEST(CheckerAgreement, ThinWallsAndExtremeScales)
         std::vector<RigidTransform> poses;
         for (int i = 0; i < 3000; ++i)
             poses.push_back({test::randomRotation(rng), scale * Vec3(u(rng), u(rng), u(rng))});
-        for (const std::string &name : checkerNames())
+        for (const std::string &name : CheckerCatalogue::builtIn().names())
         {
             const Agreement a = compare(*makeChecker(name, scene), *reference, poses);
             EXPECT_EQ(a.disagreements, 0u) << name << " at scale " << scale;
@@ -172,7 +172,7 @@ TEST(CheckerAgreement, RobotInsideClosedObstacleIsACollision)
     const TriangleMesh robot = test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1));
     test::TestRandom rng(1);
     const RigidTransform inside{test::randomRotation(rng), Vec3(5, 5, 5)};
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         if (name == "fcl")
             continue;  // FCL is registered surface-only

@@ -3,7 +3,7 @@
 #include "support/test_support.h"
 
 #include "hybridcd/fcl/fcl_checker.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <gtest/gtest.h>
 
@@ -13,11 +13,10 @@ namespace
 {
 void compareWithFcl(const std::string &cfg)
 {
-    registerFclChecker();
     const LoadedProblem problem = loadProblem(cfg);
     test::TestRandom rng(99);
     const auto poses = test::randomPoses(problem, 3000, rng);
-    const auto fcl = makeChecker("fcl", problem.scene);
+    const auto fcl = checkersWithFcl().make("fcl", problem.scene);
     const auto surface = makeChecker("bruteforce", problem.scene, ContactSemantics::SurfaceOnly);
     const auto solid = makeChecker("bruteforce", problem.scene, ContactSemantics::Solid);
     std::size_t colliding = 0, fclMissed = 0, fclExtra = 0, containment = 0;

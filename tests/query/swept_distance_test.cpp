@@ -7,7 +7,7 @@
 #include "support/test_support.h"
 
 #include "hybridcd/geometry/triangle_distance.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <gtest/gtest.h>
 
@@ -68,7 +68,7 @@ TEST(SweptDistance, FalseProvesEveryRobotPointIsBeyondItsReach)
     const auto poses = test::randomPoses(problem, 240, rng);
     std::uniform_real_distribution<double> slack(0.0, 0.5), radial(0.0, 0.03);
     const auto reference = makeChecker("bruteforce", problem.scene);
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         const auto checker = makeChecker(name, problem.scene);
         std::size_t proven = 0, notProven = 0;

@@ -2,6 +2,7 @@
 // FCL as a checker, set up the way OMPL.app sets it up, for side-by-side comparisons.
 #pragma once
 
+#include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/query/collision_checker.h"
 
 #include <memory>
@@ -28,6 +29,10 @@ private:
     std::unique_ptr<Models> models_;
 };
 
-/// Adds "fcl" to the checker registry (called by the CLI and the benchmarks at start-up).
-void registerFclChecker();
+/// The "fcl" entry for a CheckerCatalogue: `catalogue.add(fclCheckerEntry())`. It keeps FCL's own
+/// surface semantics and has no approximate mode.
+CheckerEntry fclCheckerEntry();
+
+/// CheckerCatalogue::builtIn() with "fcl" added, for programs that compare against FCL.
+CheckerCatalogue checkersWithFcl();
 }  // namespace hcd

@@ -17,7 +17,7 @@ namespace hcd
 /// BruteForceChecker's whatever the volume. Instantiated for every volume in volume_traits.h.
 /// The trees hold each face once (withoutRepeatedFaces); contacts name source-mesh triangles.
 /// The LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is
-/// tested by linear programming before any triangle. Exact mode (tolerance < 0): an LP "disjoint"
+/// tested by linear programming before any triangle. Exact mode (no tolerance): an LP "disjoint"
 /// rejects the leaf pair, an LP "intersecting" is confirmed by the exact triangle tests.
 /// Approximate mode (tolerance T >= 0): a pair of pieces whose approximation bounds (how far any
 /// point of a hull may be from its triangles) add up to at most T decides alone, so contact may be
@@ -25,7 +25,7 @@ namespace hcd
 struct PieceStage
 {
     unsigned leafTriangles = 8;
-    double approximateTolerance = -1.0;
+    std::optional<double> approximateTolerance;
 };
 
 template <class Volume>
