@@ -131,10 +131,35 @@ std::uintmax_t leadingCount(std::string_view token)
     return value;
 }
 
+// True when some line of `data` starts with the word "end_header" (leading blanks allowed), as
+// the PLY reader needs it: the word glued to the end of another line does not end the header.
+bool hasHeaderEndLine(std::string_view data)
+{
+    constexpr std::string_view word = "end_header";
+    for (std::size_t start = 0; start < data.size();)
+    {
+        std::size_t end = data.find('\n', start);
+        if (end == std::string_view::npos)
+            end = data.size();
+        std::string_view line = data.substr(start, end - start);
+        const std::size_t text = line.find_first_not_of(" \t");
+        if (text != std::string_view::npos)
+        {
+            line.remove_prefix(text);
+            if (line.substr(0, word.size()) == word &&
+                (line.size() == word.size() || std::isspace(static_cast<unsigned char>(line[word.size()]))))
+                return true;
+        }
+        start = end + 1;
+    }
+    return false;
+}
+
 // Refuses, before assimp sees them, data that assimp 5.2's readers cannot survive (each found by
 // fuzzing; `format` is the file's extension or the buffer's hint):
-// - PLY data whose header has no "end_header": the PLY reader keeps asking for the next line past
-//   the end of the data and never returns (tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply).
+// - PLY data without an "end_header" line: the PLY reader keeps asking for the next line past the
+//   end of the data and never returns (tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply,
+//   and regression_ply_glued_end_header.ply, where the word ends another line).
 // - OFF data whose header announces more vertices or faces than its bytes can hold: the OFF reader
 //   allocates every announced face before reading one, and billions of them exhaust memory
 //   (tests/fuzz_corpus/mesh/regression_off_huge_face_count.off). Every vertex and face takes more
@@ -146,7 +171,7 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     const std::string first = tokens.empty() ? std::string() : lowercase(tokens.front());
 
     const bool ply = kind == "ply" || first.rfind("ply", 0) == 0;
-    if (ply && data.find("end_header") == std::string_view::npos)
+    if (ply && !hasHeaderEndLine(data))
         throw InputError(name, 0, "malformed PLY file: its header has no end_header line");
 
     // The OFF header is "[ST][C][N][4][n]OFF", an optional dimension after the 'n' form, then the

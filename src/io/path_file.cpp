@@ -82,6 +82,11 @@ void normaliseQuaternion(PoseRecord &row, std::size_t first, const std::string &
                 << kQuaternionNormTolerance << ")";
         throw InputError(path, row.line, message.str());
     }
+    // A quaternion already unit up to rounding is kept as it is: dividing by a norm that is 1 only
+    // up to a few ulps would change its bits, so a path written by writePoses would not read back
+    // bit for bit (found by fuzzing, tests/fuzz_corpus/path/regression_renormalised_quaternion.path).
+    if (std::abs(norm - 1.0) <= 8.0 * std::numeric_limits<double>::epsilon())
+        return;
     for (int k = 0; k < 4; ++k)
         q[k] /= norm;
 }

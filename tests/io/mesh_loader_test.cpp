@@ -174,6 +174,11 @@ TEST(MeshLoader, PlyWithoutHeaderEndIsAnErrorNotAHang)
     for (const std::string format : {"ply", "PLY", ""})
         EXPECT_THROW(loadMeshFromMemory(text, format, MeshRole::Environment, "no_end.ply"), InputError) << format;
     EXPECT_THROW(loadMesh(test::writeTempFile("no_end.ply", text), MeshRole::Environment), InputError);
+    // The word glued to the end of another line does not end the header either (found by fuzzing,
+    // tests/fuzz_corpus/mesh/regression_ply_glued_end_header.ply).
+    std::string glued = text;
+    glued.replace(glued.find("vertex_indices\nen 0\nvd_header"), 29, "vertex_indicesend_header");
+    EXPECT_THROW(loadMeshFromMemory(glued, "ply", MeshRole::Environment, "glued.ply"), InputError);
     // With the line, the same triangle loads.
     std::string fixed = text;
     fixed.replace(fixed.find("en 0\nvd_header"), 14, "end_header");

@@ -114,3 +114,38 @@ TEST(PathFile, WrittenPosesReadBackBitForBit)
             EXPECT_EQ(std::signbit(back[i].values[k]), std::signbit(poses[i][k]));
         }
 }
+
+// Reading normalises a quaternion that is off unit length; reading what was written must not
+// normalise it again, or the bits change (found by fuzzing,
+// tests/fuzz_corpus/path/regression_renormalised_quaternion.path). Checked on seeded random
+// quaternions scaled off unit length by up to the accepted 1e-3.
+TEST(PathFile, NormalisedQuaternionsReadBackBitForBit)
+{
+    test::TestRandom rng(test::seeded(17));
+    std::normal_distribution<double> gauss;
+    std::uniform_real_distribution<double> off(-9e-4, 9e-4);
+    std::ostringstream text;
+    text.precision(17);
+    for (int i = 0; i < 2000; ++i)
+    {
+        double q[4];
+        double norm = 0.0;
+        for (double &c : q)
+            c = gauss(rng), norm += c * c;
+        const double scale = (1.0 + off(rng)) / std::sqrt(norm);
+        text << gauss(rng) << ' ' << gauss(rng) << ' ' << gauss(rng);
+        for (double c : q)
+            text << ' ' << c * scale;
+        text << '\n';
+    }
+    std::vector<std::vector<double>> first;
+    for (const PoseRecord &p : parsePoses(text.str(), "random.path", false))
+        first.push_back(p.values);
+    std::ostringstream written;
+    writePoses(written, first);
+    const auto second = parsePoses(written.str(), "written.path", false);
+    ASSERT_EQ(second.size(), first.size());
+    for (std::size_t i = 0; i < first.size(); ++i)
+        for (std::size_t k = 0; k < 7; ++k)
+            ASSERT_EQ(second[i].values[k], first[i][k]) << "pose " << i << " value " << k;
+}

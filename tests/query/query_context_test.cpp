@@ -4,7 +4,7 @@
 // and reuses returned ones.
 #include "support/test_support.h"
 
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/query/query_context_pool.h"
 
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 
 #include "hybridcd/geometry/solid_components.h"
 #include "hybridcd/geometry/triangle_intersection.h"
-#include "hybridcd/query/checker_registry.h"
+#include "hybridcd/query/checker_catalogue.h"
 
 #include <gtest/gtest.h>
 
@@ -90,7 +90,7 @@ void expectSameAnswers(const CollisionScene &single, const CollisionScene &twice
         distances.push_back(reference->distance(pose));
         (truth.back() ? colliding : free) += 1;
     }
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         if (name == "fcl")
             continue;  // FCL keeps the mesh as given (surface semantics, every copy)
@@ -187,7 +187,7 @@ TEST(RepeatedFaces, DoubledMeshesGiveTheSingleMeshAnswersOnRandomPoses)
     EXPECT_GT(colliding, poses.size() / 10);
     EXPECT_GT(free, poses.size() / 10);
 
-    for (const std::string &name : checkerNames())
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         if (name == "fcl")
             continue;
