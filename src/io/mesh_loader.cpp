@@ -354,7 +354,7 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
     }
     rejectAboveByteLimit(content.size(), "file", path, limits);
     rejectBeforeImport(content, extensionOf(path), path);
-    return loadFrom(*importer.importer_, Source{path}, role, limits);
+    return loadFrom(*importer.importer_, Source{path, false, {}, nullptr}, role, limits);
 }
 
 LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, const std::string &formatHint,
