@@ -93,7 +93,14 @@ void poseValuesToState(const double *v, bool planar, ob::State *state)
     {
         auto *s = state->as<ob::SE2StateSpace::StateType>();
         s->setXY(v[0], v[1]);
-        s->setYaw(v[2]);
+        // Into SO2's [-pi, pi) as SO2StateSpace::enforceBounds does: OMPL asserts that states are
+        // in bounds (an out-of-range yaw aborted `check-motion`); the rotation is the same.
+        double yaw = std::fmod(v[2], 2.0 * M_PI);
+        if (yaw < -M_PI)
+            yaw += 2.0 * M_PI;
+        else if (yaw >= M_PI)
+            yaw -= 2.0 * M_PI;
+        s->setYaw(yaw);
         return;
     }
     auto *s = state->as<ob::SE3StateSpace::StateType>();
