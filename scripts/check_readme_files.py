@@ -3,8 +3,9 @@
 """Fails when a code block of README.md differs from the file it shows.
 
 A block shows a file when the line before its opening fence is `<!-- file: PATH -->` (PATH relative
-to the repository root); the block's text must be the file's text exactly. Used for the library
-example, which is tests/consumer/main.cpp.
+to the repository root); the block's text must be the file's text exactly. The examples that the
+test command runs (REQUIRED) must each be shown: the library example, tests/consumer/main.cpp, and
+the Python example, python/example.py.
 
 Usage: python3 scripts/check_readme_files.py [SOURCE_ROOT]
 """
@@ -14,6 +15,8 @@ import re
 import sys
 
 MARKER = re.compile(r"^<!--\s*file:\s*(\S+)\s*-->$")
+# Files README.md must show, each run by scripts/test_consumer.sh.
+REQUIRED = ["tests/consumer/main.cpp", "python/example.py"]
 
 
 def shown_files(readme):
@@ -42,8 +45,10 @@ def main():
     readme = (root / "README.md").read_text(encoding="utf-8")
     failures = 0
     checked = 0
+    shown = set()
     for path, line, block in shown_files(readme):
         checked += 1
+        shown.add(path)
         if block is None:
             print(f"README.md:{line}: the marker for {path} is not followed by a closed code block", file=sys.stderr)
             failures += 1
@@ -62,6 +67,10 @@ def main():
     if checked == 0:
         print("check_readme_files: README.md marks no block with <!-- file: PATH -->", file=sys.stderr)
         return 1
+    for path in REQUIRED:
+        if path not in shown:
+            print(f"README.md: no block shows {path} (mark one with <!-- file: {path} -->)", file=sys.stderr)
+            failures += 1
     if failures:
         return 1
     print(f"check_readme_files: {checked} README block(s) equal their files")

@@ -3,7 +3,9 @@
 # Installs hybridcd into a temporary prefix and uses it from outside, as any project would:
 # tests/consumer (the README's library example) through find_package(hybridcd), and a core-only
 # program through pkg-config. Reuses ./build (or $HYBRIDCD_BUILD_DIR) when it is configured, else
-# configures it; a build without OMPL is tested through the core alone.
+# configures it; a build without OMPL is tested through the core alone. When the build has the
+# Python module, `import hybridcd` and the README's Python example (python/example.py) run from
+# the prefix too, with the interpreter the build was configured with.
 # Usage: scripts/test_consumer.sh [PROBLEM.cfg]   (default problems/window_3d.cfg)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -39,4 +41,15 @@ echo "consumer: pkg-config --cflags --libs hybridcd: $flags"
 "${CXX:-c++}" -std=c++17 -O1 "$root/tests/consumer/core_only.cpp" -o "$work/core_only" $flags \
   -Wl,-rpath,"$(pkg-config --variable=libdir hybridcd)"
 "$work/core_only" "$problem"
+# Python: the installed module, found through PYTHONPATH as the README says.
+module=$(find "$prefix" -name 'hybridcd.*.so' -path '*python*' -print -quit)
+if [ -n "$module" ]; then
+  python=$(sed -n 's/^_Python3_EXECUTABLE:INTERNAL=//p' "$build/CMakeCache.txt")
+  pydir=$(dirname "$module")
+  echo "consumer: Python module in $pydir (${python:-python3})"
+  (cd "$work" && PYTHONPATH="$pydir" "${python:-python3}" -c 'import hybridcd; print("consumer: import hybridcd from", hybridcd.__file__)')
+  (cd "$work" && PYTHONPATH="$pydir" "${python:-python3}" "$root/python/example.py" "$problem")
+else
+  echo "consumer: no Python module in this build"
+fi
 echo "consumer: OK"

@@ -11,10 +11,6 @@
 #include "hybridcd/query/penetration_estimate.h"
 
 #include <ompl/base/SpaceInformation.h>
-#include <ompl/base/spaces/SE2StateSpace.h>
-#include <ompl/base/spaces/SE3StateSpace.h>
-
-#include <cmath>
 
 #include <chrono>
 #include <iomanip>
@@ -24,44 +20,6 @@
 
 namespace hcd::cli
 {
-namespace
-{
-// Fills an OMPL state from a .path record (3D: x y z qx qy qz qw; planar: x y theta).
-void recordToState(const PoseRecord &r, bool planar, ompl::base::State *state)
-{
-    const auto &v = r.values;
-    if (planar)
-    {
-        auto *s = state->as<ompl::base::SE2StateSpace::StateType>();
-        s->setXY(v[0], v[1]);
-        s->setYaw(v[2]);
-        return;
-    }
-    auto *s = state->as<ompl::base::SE3StateSpace::StateType>();
-    s->setXYZ(v[0], v[1], v[2]);
-    Eigen::Vector4d q(v[3], v[4], v[5], v[6]);
-    double n = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
-    // As RigidTransform::fromTranslationQuaternion: rescale when the squares over- or underflow, and
-    // take the zero quaternion as the identity, so that `check` and `check-motion` see one pose.
-    if (!(n >= 1e-150 && n <= 1e150))
-    {
-        const double largest = q.cwiseAbs().maxCoeff();
-        if (largest > 0.0)
-            q /= largest;
-        n = q.norm();
-    }
-    if (!(n > 0.0))
-    {
-        s->rotation().setIdentity();
-        return;
-    }
-    s->rotation().x = q[0] / n;
-    s->rotation().y = q[1] / n;
-    s->rotation().z = q[2] / n;
-    s->rotation().w = q[3] / n;
-}
-}  // namespace
-
 void declareCheckMotion(CommandLine &cl)
 {
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
@@ -107,8 +65,8 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     const auto start = std::chrono::steady_clock::now();
     for (const auto &[from, to] : motions)
     {
-        recordToState(from, problem.config.planar, a);
-        recordToState(to, problem.config.planar, b);
+        poseValuesToState(from.values.data(), problem.config.planar, a);
+        poseValuesToState(to.values.data(), problem.config.planar, b);
         std::pair<ompl::base::State *, double> lastValid{last, 0.0};
         if (verdictOnly)
         {

@@ -48,6 +48,12 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
 /// The state of a .cfg pose (3D poses are axis-angle, planar ones yaw).
 void configPoseToState(const ConfigPose &pose, bool planar, ompl::base::State *state);
 
+/// Fills a state from .path columns (`values` holds 7 numbers, x y z qx qy qz qw, or 3, x y theta).
+/// The quaternion is normalised as RigidTransform::fromTranslationQuaternion does (rescaled when its
+/// squares over- or underflow; zero is the identity), so a state and poseToTransform of the same
+/// columns place the robot alike. A yaw is wrapped into [-pi, pi), the bounds OMPL asserts.
+void poseValuesToState(const double *values, bool planar, ompl::base::State *state);
+
 /// The .path columns of a state: x y z qx qy qz qw, or x y theta.
 std::vector<double> stateToPoseValues(const ompl::base::State *state, bool planar);
 }  // namespace hcd
