@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <system_error>
 #include <utility>
@@ -155,11 +156,55 @@ bool hasHeaderEndLine(std::string_view data)
     return false;
 }
 
+// The attributes of every "<..._array" element of COLLADA data (float_array, int_array, ...),
+// passed to `visit(attributes)`; false when a tag is not closed.
+template <typename Visit>
+bool forEachColladaArray(std::string_view data, const Visit &visit)
+{
+    for (std::size_t at = data.find('<'); at != std::string_view::npos; at = data.find('<', at + 1))
+    {
+        std::size_t nameEnd = at + 1;
+        while (nameEnd < data.size() && (std::isalnum(static_cast<unsigned char>(data[nameEnd])) || data[nameEnd] == '_'))
+            ++nameEnd;
+        const std::string_view name = data.substr(at + 1, nameEnd - at - 1);
+        if (name.size() <= 6 || name.substr(name.size() - 6) != "_array")
+            continue;
+        const std::size_t close = data.find('>', nameEnd);
+        if (close == std::string_view::npos)
+            return false;
+        visit(data.substr(nameEnd, close - nameEnd));
+    }
+    return true;
+}
+
+// The value of attribute `key` in an element's attribute text, if present.
+std::optional<std::string_view> attributeValue(std::string_view attributes, std::string_view key)
+{
+    for (std::size_t at = attributes.find(key); at != std::string_view::npos; at = attributes.find(key, at + 1))
+    {
+        const bool wordStart = at == 0 || std::isspace(static_cast<unsigned char>(attributes[at - 1]));
+        std::size_t i = at + key.size();
+        while (i < attributes.size() && std::isspace(static_cast<unsigned char>(attributes[i])))
+            ++i;
+        if (!wordStart || i >= attributes.size() || attributes[i] != '=')
+            continue;
+        ++i;
+        while (i < attributes.size() && std::isspace(static_cast<unsigned char>(attributes[i])))
+            ++i;
+        if (i >= attributes.size() || (attributes[i] != '"' && attributes[i] != '\''))
+            return std::string_view();
+        const std::size_t end = attributes.find(attributes[i], i + 1);
+        return end == std::string_view::npos ? std::string_view() : attributes.substr(i + 1, end - i - 1);
+    }
+    return std::nullopt;
+}
+
 // Refuses, before assimp sees them, data that assimp 5.2's readers cannot survive (each found by
 // fuzzing; `format` is the file's extension or the buffer's hint):
 // - PLY data without an "end_header" line: the PLY reader keeps asking for the next line past the
 //   end of the data and never returns (tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply,
 //   and regression_ply_glued_end_header.ply, where the word ends another line).
+// - COLLADA data with array elements that have no count, or a count beyond the data (below).
 // - OFF data whose header announces more vertices or faces than its bytes can hold: the OFF reader
 //   allocates every announced face before reading one, and billions of them exhaust memory
 //   (tests/fuzz_corpus/mesh/regression_off_huge_face_count.off). Every vertex and face takes more
@@ -173,6 +218,28 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     const bool ply = kind == "ply" || first.rfind("ply", 0) == 0;
     if (ply && !hasHeaderEndLine(data))
         throw InputError(name, 0, "malformed PLY file: its header has no end_header line");
+
+    // COLLADA: assimp 5.2's reader dereferences a null pointer on an array element without a
+    // count (tests/fuzz_corpus/mesh/regression_collada_array_without_count.dae), and a count is
+    // allocated before the values are read, so one above what the data can hold is refused too.
+    if (kind == "dae" || kind == "xml" || data.find("<COLLADA") != std::string_view::npos)
+    {
+        std::string problem;
+        const bool closed = forEachColladaArray(data, [&](std::string_view attributes) {
+            if (!problem.empty())
+                return;
+            const std::optional<std::string_view> count = attributeValue(attributes, "count");
+            if (!count || count->empty() || count->find_first_not_of("0123456789") != std::string_view::npos)
+                problem = "an array element without a whole-number count";
+            else if (leadingCount(*count) > data.size())
+                problem = "an array element whose count (" + std::string(*count) + ") exceeds what its " +
+                          std::to_string(data.size()) + " bytes can hold";
+        });
+        if (!closed)
+            problem = "an array element that is never closed";
+        if (!problem.empty())
+            throw InputError(name, 0, "malformed COLLADA file: " + problem);
+    }
 
     // The OFF header is "[ST][C][N][4][n]OFF", an optional dimension after the 'n' form, then the
     // vertex, face and edge counts; the keyword itself may be left out.

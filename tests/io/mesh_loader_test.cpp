@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include <sstream>
 
 using namespace hcd;
@@ -278,4 +281,34 @@ TEST(MeshLoader, MatchesOmplAppGeometryOnCubicles)
     EXPECT_NEAR(maze.max.x() - maze.min.x(), 110.0, 1e-3);
     EXPECT_NEAR(maze.max.y() - maze.min.y(), 110.0, 1e-3);
     EXPECT_LT(maze.max.z() - maze.min.z(), 20.0);
+}
+
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_collada_array_without_count.dae): assimp's
+// COLLADA reader crashes on an array element without a count. The loader refuses such data, and
+// counts above what the data can hold, before import.
+TEST(MeshLoader, ColladaArraysNeedACountTheDataCanHold)
+{
+    std::ifstream in(test::sourcePath("tests/fuzz_corpus/mesh/tet.dae"));
+    const std::string tet((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string::size_type at = tet.find("count=\"12\"");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_EQ(loadMeshFromMemory(tet, "dae", MeshRole::Environment, "tet.dae").mesh->triangleCount(), 4u);
+    for (const std::string &replacement : {"cou3d=\"12\"", "count=\"\"", "count=\"-4\"", "count=\"99999999999999\""})
+    {
+        std::string broken = tet;
+        broken.replace(at, 10, replacement);
+        for (const std::string format : {"dae", ""})
+        {
+            try
+            {
+                loadMeshFromMemory(broken, format, MeshRole::Environment, "broken.dae");
+                ADD_FAILURE() << "accepted " << replacement;
+            }
+            catch (const InputError &e)
+            {
+                EXPECT_NE(std::string(e.what()).find("malformed COLLADA file"), std::string::npos) << e.what();
+            }
+        }
+        EXPECT_THROW(loadMesh(test::writeTempFile("broken.dae", broken), MeshRole::Environment), InputError);
+    }
 }
