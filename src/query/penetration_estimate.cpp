@@ -3,30 +3,66 @@
 
 #include "hybridcd/narrowphase/penetration.h"
 
+#include <algorithm>
+#include <utility>
+
 namespace hcd
 {
 namespace
 {
-// The deepest pairwise penetration among the current contacts (depth 0 when there are none).
-Penetration deepestPair(const CollisionChecker &checker, const CollisionScene &scene, const RigidTransform &pose,
-                        QueryContext &context)
+// A contact's two triangles as flat convex pieces in world coordinates (robot placed by `pose`).
+std::pair<ConvexPiece, ConvexPiece> piecesOf(const ContactPair &c, const CollisionScene &scene, const RigidTransform &pose)
+{
+    const TriangleMesh &robot = *scene.robot, &env = *scene.environment;
+    return {ConvexPiece::hullOf({pose.apply(robot.corner(c.robotElement, 0)), pose.apply(robot.corner(c.robotElement, 1)),
+                                 pose.apply(robot.corner(c.robotElement, 2))}),
+            ConvexPiece::hullOf({env.corner(c.environmentElement, 0), env.corner(c.environmentElement, 1),
+                                 env.corner(c.environmentElement, 2)})};
+}
+
+// The current intersecting triangle pairs (containment records left out).
+std::vector<ContactPair> triangleContacts(const CollisionChecker &checker, const RigidTransform &pose,
+                                          QueryContext &context)
+{
+    std::vector<ContactPair> found = checker.contacts(pose, 256, context);
+    found.erase(std::remove_if(found.begin(), found.end(),
+                               [](const ContactPair &c) { return c.kind != ContactPair::Kind::Triangles; }),
+                found.end());
+    return found;
+}
+
+// The deepest pairwise penetration among `contacts` (depth 0 when there are none).
+Penetration deepestPair(const std::vector<ContactPair> &contacts, const CollisionScene &scene, const RigidTransform &pose)
 {
     Penetration deepest;
-    for (const ContactPair &c : checker.contacts(pose, 256, context))
+    for (const ContactPair &c : contacts)
     {
-        if (c.kind != ContactPair::Kind::Triangles)
-            continue;
-        const TriangleMesh &robot = *scene.robot, &env = *scene.environment;
-        const ConvexPiece a = ConvexPiece::hullOf({pose.apply(robot.corner(c.robotElement, 0)),
-                                                   pose.apply(robot.corner(c.robotElement, 1)),
-                                                   pose.apply(robot.corner(c.robotElement, 2))});
-        const ConvexPiece b = ConvexPiece::hullOf({env.corner(c.environmentElement, 0), env.corner(c.environmentElement, 1),
-                                                   env.corner(c.environmentElement, 2)});
+        const auto [a, b] = piecesOf(c, scene, pose);
         const Penetration p = penetrationDepth(a, b);
         if (p.intersecting && (!deepest.intersecting || p.depth > deepest.depth))
             deepest = p;
     }
     return deepest;
+}
+
+// How far the robot must move along the unit `direction` for every pair in `contacts` to come
+// apart: the largest directional penetration (the LP of section 5 read backwards) over the pairs.
+// Moving the deepest pair's minimum distance alone leaves the other pairs touching, one more
+// round each; this clears them in one step. Pairs that would need more than `limit` (a robot
+// triangle sliding along a long wall in that direction) are left to later rounds: the point is a
+// free pose nearby, not one far away.
+double clearingDistance(const std::vector<ContactPair> &contacts, const CollisionScene &scene, const RigidTransform &pose,
+                        const Vec3 &direction, double limit)
+{
+    double distance = 0.0;
+    for (const ContactPair &c : contacts)
+    {
+        const auto [a, b] = piecesOf(c, scene, pose);
+        const double s = directionalPenetration(a, -direction, b);
+        if (s <= limit)
+            distance = std::max(distance, s);
+    }
+    return distance;
 }
 }  // namespace
 
@@ -45,25 +81,30 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
         out.freePose = worldFromRobot;
         return out;
     }
-    const Penetration first = deepestPair(checker, scene, worldFromRobot, context);
+    std::vector<ContactPair> contacts = triangleContacts(checker, worldFromRobot, context);
+    const Penetration first = deepestPair(contacts, scene, worldFromRobot);
     if (!first.intersecting)
         return out;  // contained in a solid: no triangle pair to push out of
     out.depth = first.depth;
     out.direction = first.direction;
 
-    // Push out, a little past each pairwise depth so touching is left behind too.
+    // Push out along the deepest pair's direction, far enough to clear every current pair, and a
+    // little past it so that touching is left behind too.
     RigidTransform pose = worldFromRobot;
     const double scale = 1.0 + worldFromRobot.translation.norm() + scene.robot->radiusAboutOrigin();
     Penetration step = first;
     for (int i = 0; i < maxSteps && step.intersecting; ++i)
     {
-        pose.translation += (step.depth * (1.0 + 1e-6) + 1e-9 * scale) * step.direction;
+        const double push = std::max(
+            step.depth, clearingDistance(contacts, scene, pose, step.direction, scene.robot->radiusAboutOrigin()));
+        pose.translation += (push * (1.0 + 1e-6) + 1e-9 * scale) * step.direction;
         if (!checker.collides(pose, context))
         {
             out.freePose = pose;
             return out;
         }
-        step = deepestPair(checker, scene, pose, context);
+        contacts = triangleContacts(checker, pose, context);
+        step = deepestPair(contacts, scene, pose);
     }
     return out;
 }
