@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/narrowphase/penetration.h"
 
-#include "hybridcd/narrowphase/candidate_axes.h"
-
 #include "hybridcd/narrowphase/linear_program.h"
+
+#include "axis_search.h"
+#include "working_frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,60 +16,25 @@ namespace hcd
 {
 namespace
 {
-// Seidel's tolerance in the unit working frame, as in `intersectConvexPieces`.
-constexpr double kLpTolerance = 1e-12;
-// Box on the working coordinates: four times the data's extent, never active at the optimum.
-constexpr double kBox = 4.0;
 // Upper bound on the working-frame distance moved back: both pieces lie in the unit cube, so a
 // translation that keeps them meeting is at most its diagonal, 2 sqrt 3 < 4.
 constexpr double kMaxBack = 8.0;
-
-// Minimum over candidate directions of h(n) = max_B n.b - min_A n.a (see the header).
-class CandidateSearch
-{
-public:
-    CandidateSearch(const ConvexPiece &a, const ConvexPiece &b) : a_(a), b_(b) {}
-
-    Penetration run()
-    {
-        forEachCandidateAxis(a_, b_, [this](const Vec3 &axis) { consider(axis); });
-
-        Penetration result;
-        const double tolerance =
-            kNarrowPhaseRelativeTolerance * std::max(a_.magnitude(), b_.magnitude()) + 1e-300;
-        // best_ < 0 means some axis separates the projections, by -best_.
-        result.intersecting = best_ >= -tolerance;
-        result.direction = bestDirection_;
-        result.depth = result.intersecting ? std::max(0.0, best_) : 0.0;
-        return result;
-    }
-
-private:
-    // Both orientations of one axis: A pushed along +n needs hiB - loA, along -n needs hiA - loB.
-    void consider(const Vec3 &u)
-    {
-        const double length = u.norm();
-        if (!(length > 0.0) || !std::isfinite(length))
-            return;
-        const Vec3 n = u / length;
-        double loA, hiA, loB, hiB;
-        projectOnto(a_.vertices, n, loA, hiA);
-        projectOnto(b_.vertices, n, loB, hiB);
-        if (hiB - loA < best_)
-            best_ = hiB - loA, bestDirection_ = n;
-        if (hiA - loB < best_)
-            best_ = hiA - loB, bestDirection_ = -n;
-    }
-
-    const ConvexPiece &a_, &b_;
-    double best_ = std::numeric_limits<double>::infinity();
-    Vec3 bestDirection_ = Vec3::UnitX();
-};
 }  // namespace
 
 Penetration penetrationDepth(const ConvexPiece &a, const ConvexPiece &b)
 {
-    return CandidateSearch(a, b).run();
+    // h(n) = max_B n.b - min_A n.a (see the header) is minus the gap between the projections
+    // along -n, so the smallest push is minus the largest gap, along minus its axis.
+    constexpr double kNoStop = std::numeric_limits<double>::infinity();
+    Vec3 axis;
+    const double gap = AxisSearch(a, b, kNoStop, AxisSearch::Ties::Negative).run(&axis);
+    const double push = -gap;
+    Penetration result;
+    // push < 0 means some axis separates the projections, by -push.
+    result.intersecting = push >= -pairTolerance(a, b);
+    result.direction = gap > -std::numeric_limits<double>::infinity() ? Vec3(-axis) : Vec3::UnitX();
+    result.depth = result.intersecting ? std::max(0.0, push) : 0.0;
+    return result;
 }
 
 double directionalPenetration(const ConvexPiece &a, const Vec3 &motion, const ConvexPiece &b)

@@ -17,34 +17,21 @@
 // w . x <= sum_{i in A} lambda_i d_i on A and w . x >= -sum_{i in B} lambda_i d_i on B, and
 // these bounds differ by -t* > 0: w is a separating direction with gap at least -t*. Section 5's
 // penetration formulation (a time variable) is the same shape with one more dimension, which is
-// why the solver below is generic in the dimension.
+// why the solver (small_lp.h) is generic in the dimension.
 //
-// Solver. Seidel's randomized incremental algorithm (Seidel 1991): take the constraints in a
-// random order keeping the optimum of those seen so far; when a new constraint is violated the
-// new optimum lies on its hyperplane, found by the same algorithm one dimension down on the
-// constraints seen so far, substituted into that hyperplane. Expected time O(d! n), linear in
-// the number of faces for fixed d, with no setup: for the few dozen faces of a convex piece it
-// beats general-purpose LP codes by orders of magnitude. The order comes from a seeded shuffle,
-// so results are deterministic. The narrow phase instead takes the faces roughly in increasing
-// order of their slack at the point between the two centroids (a one-pass bucket order): the
-// faces that end up tight then come first, and late violations, which cost a subproblem over all
-// earlier faces, become rare; a violated face also moves to the front of its level (move-to-front,
-// which leaves the optimum unchanged). The box rows of a subproblem go last. Together: about
-// 1.7 us for two 20-face pieces, against 21 us in random order. No allocation per call (a
-// workspace the caller owns, LpWorkspace). The two-dimensional level solves its one-dimensional subproblems in place.
+// Order. The narrow phase hands Seidel's solver the faces roughly in increasing order of their
+// slack at the point between the two centroids (a one-pass bucket order) rather than shuffled:
+// the faces that end up tight then come first, and late violations become rare. Together with
+// the solver's move-to-front: about 1.7 us for two 20-face pieces, against 21 us in random order.
 //
 // Robustness. Coordinates are first translated to the pieces' mid-centroid and scaled to unit
 // size, and each constraint's normal is normalised, so that one absolute tolerance means the
 // same at every scale (1e6 and 1e-6 alike). A box |x_i| <= 4 (four times the data's extent,
-// never active at the optimum of intersecting pieces) keeps every subproblem bounded without
-// special cases. The hyperplane substitution pivots on the largest coefficient, so substituted
-// coefficients never grow by more than a factor of two per level; violations are therefore
-// measured in the original constraints' units at every level. A constraint that becomes
-// (numerically) constant in a subproblem, as parallel and coincident faces do, is checked as a
-// constant rather than divided by. Every answer is certified afterwards in the original frame:
-// the witness against every inequality of both pieces, the separating plane against every vertex
-// of both; if the dual plane fails, a separating-axis search over face normals and edge-edge
-// cross products (exact for polytopes) finds one.
+// never active at the optimum of intersecting pieces) keeps every subproblem bounded. Every
+// answer is certified afterwards in the original frame: the witness against every inequality of
+// both pieces, the separating plane against every vertex of both; if the dual plane fails, a
+// separating-axis search over face normals and edge-edge cross products (exact for polytopes,
+// separating_axes.h) finds one.
 //
 // Touching. Touching counts as intersecting, with a tolerance of 1e-9 of the coordinates'
 // magnitude. The pieces intersect when the witness satisfies every inequality up to rounding
@@ -58,24 +45,13 @@
 #pragma once
 
 #include "hybridcd/narrowphase/convex_piece.h"
+#include "hybridcd/narrowphase/separating_axes.h"
+#include "hybridcd/narrowphase/small_lp.h"
 
-#include <Eigen/Core>
-
-#include <array>
-#include <cstdint>
-#include <memory>
 #include <vector>
 
 namespace hcd
 {
-/// One linear inequality a . x <= b in R^D.
-template <int D>
-struct Halfspace
-{
-    Eigen::Matrix<double, D, 1> a = Eigen::Matrix<double, D, 1>::Zero();
-    double b = 0.0;
-};
-
 /// Appends the face inequalities of `piece` as rows of a 4-variable LP in (x', u), with
 /// x = center + scale * x' (a working frame in which the data has unit size) and the piece
 /// translated by u * motion: n . x' + (n . motion) u <= (d - n . center) / scale, with n normalised
@@ -83,97 +59,6 @@ struct Halfspace
 /// directional penetration are both LPs over such rows.
 void appendWorkingFrameRows(std::vector<Halfspace<4>> &rows, const ConvexPiece &piece, const Vec3 &center, double scale,
                             const Vec3 &motion);
-
-/// Scratch memory of the LP solver: row lists that only grow, so that once warm no solve
-/// allocates. Owned by the caller (a QueryContext holds one) and used by one solve at a time;
-/// the overloads without one make a fresh workspace per call.
-class LpWorkspace
-{
-public:
-    LpWorkspace();
-    ~LpWorkspace();
-    LpWorkspace(LpWorkspace &&) noexcept;
-    LpWorkspace &operator=(LpWorkspace &&) noexcept;
-
-    struct Lists;  // defined by the solver
-    Lists &lists() { return *lists_; }
-
-private:
-    std::unique_ptr<Lists> lists_;
-};
-
-/// Whether a small LP has a solution (it is never unbounded: the box bounds every variable).
-enum class LpStatus
-{
-    Optimal,
-    Infeasible
-};
-
-/// The basis entries that stand for the box: x_j >= lower_j and x_j <= upper_j.
-constexpr int lpLowerBoundId(int j)
-{
-    return -1 - 2 * j;
-}
-constexpr int lpUpperBoundId(int j)
-{
-    return -2 - 2 * j;
-}
-
-/// Result of `solveSmallLp`.
-template <int D>
-struct LpSolution
-{
-    LpStatus status = LpStatus::Infeasible;
-    /// An optimal point (meaningful when `status` is Optimal).
-    Eigen::Matrix<double, D, 1> x = Eigen::Matrix<double, D, 1>::Zero();
-    /// The D constraints whose hyperplanes meet at `x`: indices into the constraint list, or
-    /// lpLowerBoundId(j) / lpUpperBoundId(j) for the box. Their dual multipliers are the LP's.
-    std::array<int, D> basis{};
-};
-
-/// Maximises objective . x subject to every constraint and lower <= x <= upper, by Seidel's
-/// algorithm (expected O(D! n)). Constraints are normalised to unit normals first (constraints
-/// with a zero normal are checked as constants); `tolerance` is then an absolute distance: a
-/// constraint counts as satisfied when a.x - b <= tolerance, and the LP as infeasible only when
-/// no point comes within `tolerance` of every constraint. The caller scales its coordinates to
-/// order one so that the tolerance is meaningful. Constraints are taken in a random order
-/// (deterministic for a given `seed`) or, when `orderHint` is given, in increasing order of their
-/// slack b - a . hint at that point: with a hint near the optimum the constraints that end up
-/// tight come first and later ones rarely trigger subproblems (a heuristic: the expected bound
-/// is only proven for the random order; ties go by index).
-/// Instantiated for D = 1, 2, 3, 4.
-template <int D>
-LpSolution<D> solveSmallLp(LpWorkspace &workspace, const std::vector<Halfspace<D>> &constraints,
-                           const Eigen::Matrix<double, D, 1> &objective, const Eigen::Matrix<double, D, 1> &lower,
-                           const Eigen::Matrix<double, D, 1> &upper, double tolerance,
-                           const Eigen::Matrix<double, D, 1> *orderHint = nullptr,
-                           std::uint64_t seed = 0x2545F4914F6CDD1DULL);
-
-/// solveSmallLp with a workspace of its own (allocates; for one-off solves).
-template <int D>
-LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const Eigen::Matrix<double, D, 1> &objective,
-                           const Eigen::Matrix<double, D, 1> &lower, const Eigen::Matrix<double, D, 1> &upper,
-                           double tolerance, const Eigen::Matrix<double, D, 1> *orderHint = nullptr,
-                           std::uint64_t seed = 0x2545F4914F6CDD1DULL)
-{
-    LpWorkspace workspace;
-    return solveSmallLp<D>(workspace, constraints, objective, lower, upper, tolerance, orderHint, seed);
-}
-
-#define HYBRIDCD_DECLARE_SMALL_LP(D)                                                                                   \
-    extern template LpSolution<D> solveSmallLp<D>(LpWorkspace &, const std::vector<Halfspace<D>> &,                  \
-                                                  const Eigen::Matrix<double, D, 1> &,                                \
-                                                  const Eigen::Matrix<double, D, 1> &,                                \
-                                                  const Eigen::Matrix<double, D, 1> &, double,                        \
-                                                  const Eigen::Matrix<double, D, 1> *, std::uint64_t);
-HYBRIDCD_DECLARE_SMALL_LP(1)
-HYBRIDCD_DECLARE_SMALL_LP(2)
-HYBRIDCD_DECLARE_SMALL_LP(3)
-HYBRIDCD_DECLARE_SMALL_LP(4)
-#undef HYBRIDCD_DECLARE_SMALL_LP
-
-/// The narrow phase's tolerance, relative to the largest absolute vertex coordinate of the pair.
-constexpr double kNarrowPhaseRelativeTolerance = 1e-9;
 
 /// Outcome of `intersectConvexPieces`, every field in the pieces' common frame and units.
 struct IntersectionResult
@@ -230,15 +115,4 @@ inline bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece 
     LpWorkspace workspace;
     return convexPiecesIntersectPrimal(a, b, workspace);
 }
-
-/// The separating-axis test: the largest gap, over the candidate axes, between the projections
-/// of the pieces' vertices (face normals of both, cross products of every pair of edges, and for
-/// pieces of dimension <= 1 the extra axes their degenerate Minkowski difference needs), which
-/// is positive exactly when the pieces are disjoint and, if negative, minus the smallest overlap.
-/// `axis`, when given, receives the best unit axis, oriented so that A projects below B.
-double separatingAxisGap(const ConvexPiece &a, const ConvexPiece &b, Vec3 *axis = nullptr);
-
-/// Reference test by separating axes (O(E_a E_b (V_a + V_b))): intersecting (or touching) when
-/// no axis separates the pieces by more than 1e-9 of the coordinates' magnitude.
-bool convexPiecesIntersectSat(const ConvexPiece &a, const ConvexPiece &b);
 }  // namespace hcd

@@ -2,7 +2,7 @@
 // What one stream of queries carries from query to query, owned by the caller.
 #pragma once
 
-#include "hybridcd/narrowphase/linear_program.h"
+#include "hybridcd/narrowphase/small_lp.h"
 
 #include <atomic>
 #include <cstddef>

@@ -1,31 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "hybridcd/narrowphase/linear_program.h"
+#include "hybridcd/narrowphase/small_lp.h"
 
-#include "hybridcd/narrowphase/candidate_axes.h"
-
-#include <Eigen/LU>
+#include "small_lp_rows.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <utility>
 
 namespace hcd
 {
+namespace small_lp
+{
 namespace
 {
-// A constraint a . x <= b of a (sub)problem, with the index of the input constraint (or box
-// bound) it came from, so that the optimum's basis can be reported. Plain arrays: the loops
-// below are the whole cost of the solver, and they index coordinates by run-time pivots.
-template <int K>
-struct Row
-{
-    double a[K];
-    double b;
-    int id;
-};
-
 template <int K>
 struct Box
 {
@@ -37,67 +25,6 @@ struct Box
 // normals and substitution never more than doubles a coefficient) is parallel to the current
 // flat: within the box its left side is below ~1e-13, so it is checked as the constant 0 <= b.
 constexpr double kConstant = 1e-14;
-
-// One scratch list per dimension: the level-K step writes the rows of its (K-1)-D subproblem
-// into rows<K-1> while reading its own from rows<K>, so no two live subproblems share a list. The
-// lists only grow (to the largest problem seen), so once warm nothing is allocated. The caller
-// owns the workspace (LpWorkspace); the solver passes it down.
-struct Workspace
-{
-    std::vector<Row<1>> rows1;
-    std::vector<Row<2>> rows2;
-    std::vector<Row<3>> rows3;
-    std::vector<Row<4>> rows4;
-    std::vector<Row<1>> spare1;
-    std::vector<Row<2>> spare2;
-    std::vector<Row<3>> spare3;
-    std::vector<Row<4>> spare4;
-    std::vector<std::pair<double, int>> keys;
-    std::vector<int> counts;
-    std::vector<Halfspace<3>> primalRows;
-
-    // A second list per dimension, for reordering rows<K> through a copy.
-    template <int K>
-    std::vector<Row<K>> &spare()
-    {
-        if constexpr (K == 1)
-            return spare1;
-        else if constexpr (K == 2)
-            return spare2;
-        else if constexpr (K == 3)
-            return spare3;
-        else
-            return spare4;
-    }
-
-    template <int K>
-    std::vector<Row<K>> &rows()
-    {
-        if constexpr (K == 1)
-            return rows1;
-        else if constexpr (K == 2)
-            return rows2;
-        else if constexpr (K == 3)
-            return rows3;
-        else
-            return rows4;
-    }
-
-    // Room for the subproblems of a D-dimensional problem of n rows: each level below has at most
-    // two rows (the box's) more than the one above.
-    template <int D>
-    void reserveSubproblems(std::size_t n)
-    {
-        if constexpr (D > 2)  // the 2D level solves its 1D subproblems in place
-        {
-            std::vector<Row<D - 1>> &sub = rows<D - 1>();
-            if (sub.size() < n + 2)
-                sub.resize(n + 2);
-            reserveSubproblems<D - 1>(n + 2);
-        }
-    }
-};
-
 
 // The feasible interval of one variable, narrowed one constraint a y <= b at a time. Both ends
 // are kept as upper bounds, end_[0] on y and end_[1] on -y, so that either sign of a is the same
@@ -371,6 +298,8 @@ bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps,
     return true;
 }
 
+}  // namespace
+
 // Runs Seidel on rows already normalised and ordered (they live in ws.rows<D>()).
 template <int D>
 bool solveRows(Workspace &ws, int n, const double *objective, const double *lower, const double *upper,
@@ -385,6 +314,15 @@ bool solveRows(Workspace &ws, int n, const double *objective, const double *lowe
     }
     return seidel<D>(ws.rows<D>().data(), n, objective, box, tolerance, x, basis, ws);
 }
+
+template bool solveRows<4>(Workspace &, int, const double *, const double *, const double *, double, double *, int *);
+}  // namespace small_lp
+
+namespace
+{
+using small_lp::Row;
+using small_lp::Workspace;
+using small_lp::solveRows;
 
 // Sorts (key, index) pairs: insertion sort for the few dozen rows of a typical problem, which
 // beats std::sort's setup there; the order is the same (pairs are distinct).
@@ -405,36 +343,6 @@ void sortKeys(std::pair<double, int> *keys, int n)
     }
 }
 
-// Writes rows[0..n) to `sorted` in increasing order of b (the slack at the origin with t = 0)
-// up to buckets: a stable counting sort into n equal buckets between the smallest and largest b.
-// It orders the rows as well as a full sort does for Seidel's purposes (the same number of
-// subproblem rows within a few percent) at a fraction of the cost, and without a branch.
-// `counts` has room for 2 n + 1 entries.
-void orderBySlack(const Row<4> *rows, int n, Row<4> *sorted, std::vector<int> &counts)
-{
-    if (n == 0)
-        return;
-    double lo = rows[0].b, hi = rows[0].b;
-    for (int i = 1; i < n; ++i)
-        lo = std::min(lo, rows[i].b), hi = std::max(hi, rows[i].b);
-    const double scale = hi > lo ? double(n) / (hi - lo) : 0.0;
-    const double last = double(n - 1);
-    int *const count = counts.data();          // n + 1 entries
-    int *const bucketOf = counts.data() + n + 1;  // n entries
-    std::fill(count, count + n + 1, 0);
-    for (int i = 0; i < n; ++i)
-    {
-        const double v = (rows[i].b - lo) * scale;
-        const int bucket = int(std::min(v >= 0.0 ? v : 0.0, last));  // NaN goes first
-        bucketOf[i] = bucket;
-        ++count[bucket + 1];
-    }
-    for (int k = 0; k < n; ++k)
-        count[k + 1] += count[k];
-    for (int i = 0; i < n; ++i)
-        sorted[count[bucketOf[i]]++] = rows[i];
-}
-
 std::uint64_t splitMix64(std::uint64_t &state)
 {
     std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
@@ -442,149 +350,7 @@ std::uint64_t splitMix64(std::uint64_t &state)
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
     return z ^ (z >> 31);
 }
-
-// ---------------------------------------------------------------------------------------------
-// Convex pieces.
-
-// The pair's scale for tolerances: the largest absolute vertex coordinate.
-double pairTolerance(const ConvexPiece &a, const ConvexPiece &b)
-{
-    return kNarrowPhaseRelativeTolerance * std::max(a.magnitude(), b.magnitude()) + 1e-300;
-}
-
-// Working frame: x = center + scale * x', with every vertex in |x'_i| <= 1.
-struct Frame
-{
-    Vec3 center;
-    double scale;
-};
-
-// The working frame and, in the same pass over the vertices, `pairTolerance`.
-Frame workingFrame(const ConvexPiece &a, const ConvexPiece &b, double *tolerance = nullptr)
-{
-    Frame f{0.5 * (a.centroid + b.centroid), 0.0};
-    Vec3 extent = Vec3::Zero(), magnitude = Vec3::Zero();
-    for (const ConvexPiece *p : {&a, &b})
-        for (const Vec3 &v : p->vertices)
-        {
-            extent = extent.cwiseMax((v - f.center).cwiseAbs());
-            magnitude = magnitude.cwiseMax(v.cwiseAbs());
-        }
-    f.scale = extent.maxCoeff();
-    const double largest = magnitude.maxCoeff();  // max(a.magnitude(), b.magnitude())
-    if (!(f.scale > 0.0))  // both pieces one and the same point
-        f.scale = std::max(1.0, largest);
-    if (tolerance)
-        *tolerance = kNarrowPhaseRelativeTolerance * largest + 1e-300;
-    return f;
-}
-
-// n . x <= d in working coordinates, with n made unit: n . x' <= (d - n . center) / scale.
-template <typename Emit>
-void forEachScaledPlane(const ConvexPiece &p, const Frame &f, Emit emit)
-{
-    const double inverseScale = 1.0 / f.scale;
-    for (std::size_t i = 0; i < p.normals.size(); ++i)
-    {
-        const double length = p.normals[i].norm();
-        if (!(length > 0.0))
-            continue;
-        // Multiplying by the inverse (the normals are unit, so it is one up to rounding) is
-        // several times cheaper than dividing; a length so small that the inverse overflows
-        // divides instead.
-        const double inverse = 1.0 / length;
-        if (inverse <= 1e300)
-        {
-            const Vec3 n = p.normals[i] * inverse;
-            emit(n, (p.offsets[i] * inverse - n.dot(f.center)) * inverseScale);
-        }
-        else
-        {
-            const Vec3 n = p.normals[i] / length;
-            emit(n, (p.offsets[i] / length - n.dot(f.center)) / f.scale);
-        }
-    }
-}
-
-// Box of the working frame: four times the data's extent, so never active where it matters.
-constexpr double kBox = 4.0;
-// Bounds on the slack: above the largest inscribed radius (sqrt 3), below the smallest slack
-// anywhere in the box (-(sqrt 3 + 4 sqrt 3)), so neither is active at the optimum.
-constexpr double kSlackHigh = 4.0, kSlackLow = -16.0;
-// Violations below this fraction of the tolerance (1e-13 relative) are rounding: exactly touching
-// pieces land there, and are answered without the separating-axis search of the band above it.
-// A sharp vertex (angle above 2e-4 rad) within the band is within the tolerance of touching.
-constexpr double kRoundingFraction = 1e-4;
-// Seidel's tolerance in the working frame (unit size): far above rounding, far below the
-// narrow phase's 1e-9.
-constexpr double kLpTolerance = 1e-12;
-
-// Sets the plane normal to `direction` halfway between the pieces when the gap between their
-// vertex projections exceeds `minimumGap`.
-bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap,
-                   IntersectionResult &result)
-{
-    const double length = direction.norm();
-    if (!(length > 0.0) || !std::isfinite(length))
-        return false;
-    const Vec3 n = direction / length;
-    double maxA = -std::numeric_limits<double>::infinity(), minB = std::numeric_limits<double>::infinity();
-    for (const Vec3 &v : a.vertices)
-        maxA = std::max(maxA, n.dot(v));
-    for (const Vec3 &v : b.vertices)
-        minB = std::min(minB, n.dot(v));
-    if (!(minB - maxA > minimumGap))
-        return false;
-    result.separatingNormal = n;
-    result.separatingOffset = 0.5 * (maxA + minB);  // lies in [maxA, minB] in floating point too
-    return true;
-}
-
-// Separating-axis search, stopping early once some axis gives a gap above `stopAbove`.
-class AxisSearch
-{
-public:
-    AxisSearch(const ConvexPiece &a, const ConvexPiece &b, double stopAbove) : a_(a), b_(b), stopAbove_(stopAbove) {}
-
-    double run(Vec3 *axis)
-    {
-        forEachCandidateAxis(a_, b_, [this](const Vec3 &u) { consider(u); });
-        if (axis)
-            *axis = bestAxis_;
-        return best_;
-    }
-
-private:
-    void consider(const Vec3 &u)
-    {
-        if (best_ > stopAbove_)
-            return;
-        const double length = u.norm();
-        if (!(length > 0.0) || !std::isfinite(length))
-            return;
-        const Vec3 n = u / length;
-        double loA, hiA, loB, hiB;
-        projectOnto(a_.vertices, n, loA, hiA);
-        projectOnto(b_.vertices, n, loB, hiB);
-        if (loB - hiA >= loA - hiB)
-        {
-            if (loB - hiA > best_)
-                best_ = loB - hiA, bestAxis_ = n;
-        }
-        else if (loA - hiB > best_)
-            best_ = loA - hiB, bestAxis_ = -n;
-    }
-
-    const ConvexPiece &a_, &b_;
-    double stopAbove_;
-    double best_ = -std::numeric_limits<double>::infinity();
-    Vec3 bestAxis_ = Vec3::UnitX();
-};
 }  // namespace
-
-struct LpWorkspace::Lists : Workspace
-{
-};
 
 LpWorkspace::LpWorkspace() : lists_(std::make_unique<Lists>()) {}
 LpWorkspace::~LpWorkspace() = default;
@@ -672,149 +438,4 @@ HYBRIDCD_INSTANTIATE_SMALL_LP(2)
 HYBRIDCD_INSTANTIATE_SMALL_LP(3)
 HYBRIDCD_INSTANTIATE_SMALL_LP(4)
 #undef HYBRIDCD_INSTANTIATE_SMALL_LP
-
-IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &workspace)
-{
-    double tolerance;
-    const Frame frame = workingFrame(a, b, &tolerance);
-
-    // Rows in the working frame: (n, 1) . (x', t') <= d', A's first, each scaled to a unit
-    // normal as solveSmallLp does. The rows are staged by id behind the sorted copy the solver
-    // permutes, so that the dual can look up its basis rows.
-    Workspace &ws = workspace.lists();
-    const std::size_t faces = a.normals.size() + b.normals.size();
-    if (ws.rows4.size() < 2 * faces)
-        ws.rows4.resize(2 * faces);
-    if (ws.counts.size() < 2 * faces + 1)
-        ws.counts.resize(2 * faces + 1);
-    Row<4> *const staged = ws.rows4.data() + faces;  // the rows by id; sorted into the front
-    int n = 0;
-    const auto emit = [&](const Vec3 &unit, double d) {
-        // (unit, 1) has length sqrt 2 up to rounding.
-        constexpr double kInverseLength = 0.70710678118654752440;
-        Row<4> &r = staged[n];
-        r.a[0] = unit[0] * kInverseLength, r.a[1] = unit[1] * kInverseLength, r.a[2] = unit[2] * kInverseLength;
-        r.a[3] = kInverseLength;
-        r.b = d * kInverseLength;
-        r.id = n;
-        ++n;
-    };
-    forEachScaledPlane(a, frame, emit);
-    const int rowsOfA = n;
-    forEachScaledPlane(b, frame, emit);
-    orderBySlack(staged, n, ws.rows4.data(), ws.counts);
-
-    const double objective[4] = {0.0, 0.0, 0.0, 1.0};
-    const double lower[4] = {-kBox, -kBox, -kBox, kSlackLow}, upper[4] = {kBox, kBox, kBox, kSlackHigh};
-    struct
-    {
-        LpStatus status = LpStatus::Infeasible;
-        double x[4];
-        int basis[4];
-    } lp;
-    if (solveRows<4>(ws, n, objective, lower, upper, kLpTolerance, lp.x, lp.basis))
-        lp.status = LpStatus::Optimal;
-
-    IntersectionResult result;
-    if (lp.status == LpStatus::Optimal)
-    {
-        result.witness = frame.center + frame.scale * Vec3(lp.x[0], lp.x[1], lp.x[2]);
-        result.depth = -std::max(a.maxViolation(result.witness), b.maxViolation(result.witness));
-        if (result.depth >= -kRoundingFraction * tolerance)
-        {
-            result.intersecting = true;
-            result.certificate = IntersectionResult::Certificate::Witness;
-            return result;
-        }
-        // Dual certificate: sum lambda_j (n_j, 1) = (0, 0, 0, 1) over the basis; the A part of
-        // sum lambda_j n_j separates (see the header).
-        const bool clearlyApart = result.depth < -tolerance;
-        if (std::all_of(lp.basis, lp.basis + 4, [](int id) { return id >= 0; }))
-        {
-            Eigen::Matrix4d columns;
-            for (int j = 0; j < 4; ++j)
-            {
-                // (n_j, 1) / sqrt 2: a common scale of the columns only scales lambda.
-                const Row<4> &r = staged[lp.basis[j]];
-                columns.col(j) << r.a[0], r.a[1], r.a[2], r.a[3];
-            }
-            const Eigen::Vector4d lambda = columns.fullPivLu().solve(Eigen::Vector4d::UnitW());
-            Vec3 direction = Vec3::Zero();
-            for (int j = 0; j < 4; ++j)
-                direction +=
-                    (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * columns.col(j).head<3>();
-            if (lambda.allFinite() && separateAlong(direction, a, b, clearlyApart ? 0.0 : tolerance, result))
-            {
-                result.certificate = IntersectionResult::Certificate::LpDual;
-                return result;
-            }
-        }
-        if (!clearlyApart)
-        {
-            // The witness violates some inequality, but by no more than the tolerance. Near a
-            // sharp edge or vertex that violation can be far smaller than the distance, so the
-            // pieces count as touching only if no axis separates them by more than the tolerance
-            // either (the reference test's criterion). Rare, so the axis search's cost is too.
-            Vec3 axis;
-            if (AxisSearch(a, b, tolerance).run(&axis) > tolerance && separateAlong(axis, a, b, tolerance, result))
-            {
-                result.certificate = IntersectionResult::Certificate::AxisSearch;
-                return result;
-            }
-            result.intersecting = true;
-            result.certificate = IntersectionResult::Certificate::Witness;
-            return result;
-        }
-    }
-    Vec3 axis;
-    if (separatingAxisGap(a, b, &axis) > 0.0 && separateAlong(axis, a, b, 0.0, result))
-    {
-        result.certificate = IntersectionResult::Certificate::AxisSearch;
-        return result;
-    }
-    result.intersecting = true;
-    result.certificate = IntersectionResult::Certificate::Conservative;
-    if (lp.status != LpStatus::Optimal)
-        result.witness = frame.center;
-    return result;
-}
-
-bool convexPiecesIntersectPrimal(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &workspace)
-{
-    const Frame frame = workingFrame(a, b);
-    std::vector<Halfspace<3>> &rows = workspace.lists().primalRows;
-    rows.clear();
-    const auto emit = [&](const Vec3 &n, double d) { rows.push_back({n, d}); };
-    forEachScaledPlane(a, frame, emit);
-    forEachScaledPlane(b, frame, emit);
-    const LpSolution<3> lp = solveSmallLp<3>(workspace, rows, Vec3::Ones(), Vec3::Constant(-kBox), Vec3::Constant(kBox),
-                                             pairTolerance(a, b) / frame.scale);
-    return lp.status == LpStatus::Optimal;
-}
-
-double separatingAxisGap(const ConvexPiece &a, const ConvexPiece &b, Vec3 *axis)
-{
-    return AxisSearch(a, b, std::numeric_limits<double>::infinity()).run(axis);
-}
-
-bool convexPiecesIntersectSat(const ConvexPiece &a, const ConvexPiece &b)
-{
-    const double tolerance = pairTolerance(a, b);
-    return AxisSearch(a, b, tolerance).run(nullptr) <= tolerance;
-}
-void appendWorkingFrameRows(std::vector<Halfspace<4>> &rows, const ConvexPiece &piece, const Vec3 &center, double scale,
-                            const Vec3 &motion)
-{
-    for (std::size_t i = 0; i < piece.normals.size(); ++i)
-    {
-        const double norm = piece.normals[i].norm();
-        if (!(norm > 0.0))
-            continue;
-        const Vec3 n = piece.normals[i] / norm;
-        Halfspace<4> h;
-        h.a << n, n.dot(motion);
-        h.b = (piece.offsets[i] / norm - n.dot(center)) / scale;
-        rows.push_back(h);
-    }
-}
 }  // namespace hcd
