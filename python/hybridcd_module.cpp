@@ -11,7 +11,7 @@
 // Each batch is copied out of NumPy while the GIL is held; the checks then run without it, so
 // other Python threads (and other batches on the same checker, which is immutable) run meanwhile.
 #include "hybridcd/io/input_error.h"
-#include "hybridcd/io/path_file.h"
+#include "hybridcd/io/pose_codec.h"
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
@@ -58,7 +58,7 @@ struct Problem : Scene
 {
 };
 
-using Pose = std::array<double, 7>;  // the first 3 or 7 columns are used
+using Pose = PoseRow;  // the first 3 or 7 columns are used
 
 std::string shapeOf(const py::array &a)
 {
@@ -100,16 +100,14 @@ std::vector<Pose> readPoses(const py::handle &object, bool planar, const char *w
         if (planar || !finite)
             continue;
         // As pose files are read (path_file.h): unit quaternions only, normalised.
-        const double norm = std::sqrt(p[3] * p[3] + p[4] * p[4] + p[5] * p[5] + p[6] * p[6]);
-        if (norm == 0.0 || std::abs(norm - 1.0) > kQuaternionNormTolerance)
+        const QuaternionCheck check = normaliseRowQuaternion(p.data());
+        if (check.verdict != QuaternionCheck::Verdict::Unit)
         {
             std::ostringstream message;
-            message << what << "[" << i << "]: the quaternion (qx qy qz qw) has norm " << norm
+            message << what << "[" << i << "]: the quaternion (qx qy qz qw) has norm " << check.norm
                     << "; a unit quaternion is expected (within " << kQuaternionNormTolerance << ")";
             throw py::value_error(message.str());
         }
-        for (std::size_t c = 3; c < 7; ++c)
-            p[c] /= norm;
     }
     return poses;
 }
@@ -120,11 +118,6 @@ bool isFinite(const Pose &p, bool planar)
         if (!std::isfinite(p[c]))
             return false;
     return true;
-}
-
-RigidTransform transformOf(const Pose &p, bool planar)
-{
-    return poseToTransform(PoseRecord{std::vector<double>(p.begin(), p.begin() + long(poseColumns(planar))), 0}, planar);
 }
 
 template <typename T>
@@ -196,7 +189,7 @@ public:
         // As `check-motion`: the validator OMPL is given, with only collisions deciding.
         planning_ = makePlanningProblem(problem, checker_, MotionCheck::Continuous);
         si_ = planning_.setup->getSpaceInformation();
-        validator_ = std::dynamic_pointer_cast<ContinuousMotionValidator>(si_->getMotionValidator());
+        validator_ = planning_.continuousValidator;
         validator_->setContactTolerance(contactTolerance);
         validator_->setApplyBounds(false);
     }
@@ -213,7 +206,7 @@ public:
             py::gil_scoped_release release;
             QueryContext context;  // one per batch: no allocation per pose once warm
             for (std::size_t i = 0; i < poses.size(); ++i)
-                out[i] = checker_->collides(transformOf(poses[i], planar()), context) ? 1 : 0;
+                out[i] = checker_->collides(transformOfRow(poses[i].data(), planar()), context) ? 1 : 0;
         }
         return toBoolArray(out);
     }
@@ -235,7 +228,7 @@ public:
                     out[i] = 0.0;
                     continue;
                 }
-                const RigidTransform pose = transformOf(poses[i], planar());
+                const RigidTransform pose = transformOfRow(poses[i].data(), planar());
                 const double d = checker_->distance(pose, context);
                 out[i] = d > 0.0 ? d : -estimatePenetration(*checker_, scene, pose, context, 0).depth;
             }

@@ -45,7 +45,7 @@ int runCheck(const CommandLine &cl, const CheckerCatalogue &checkers)
     const auto start = std::chrono::steady_clock::now();
     for (const PoseRecord &pose : poses)
     {
-        const bool collides = checker->collides(poseToTransform(pose, problem.config.planar), context);
+        const bool collides = checker->collides(transformOfRow(pose.values.data(), problem.config.planar), context);
         free += collides ? 0 : 1;
         out += collides ? "0\n" : "1\n";
     }
@@ -89,7 +89,7 @@ int runContacts(const CommandLine &cl, const CheckerCatalogue &checkers)
     for (std::size_t p = 0; p < poses.size(); ++p)
     {
         const auto found =
-            checker->contacts(poseToTransform(poses[p], problem.config.planar), std::size_t(limit), context);
+            checker->contacts(transformOfRow(poses[p].values.data(), problem.config.planar), std::size_t(limit), context);
         out << "pose " << p + 1 << " (line " << poses[p].line << "): " << found.size() << " contact"
             << (found.size() == 1 ? "" : "s") << (found.size() == std::size_t(limit) ? " (limit reached)" : "") << '\n';
         for (const ContactPair &c : found)

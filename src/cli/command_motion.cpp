@@ -51,7 +51,7 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     PlanningProblem planning = makePlanningProblem(problem, checkers.make(checkerName, problem.scene, options),
                                                    MotionCheck::Continuous);
     const auto si = planning.setup->getSpaceInformation();
-    auto validator = std::dynamic_pointer_cast<ContinuousMotionValidator>(si->getMotionValidator());
+    ContinuousMotionValidator *validator = planning.continuousValidator.get();
     validator->setContactTolerance(contactTolerance);
     validator->setApplyBounds(false);  // as in `check`, only collisions decide
     // Verdict only: OMPL's two-state checkMotion, which stops at the first contact it sees and
@@ -124,7 +124,7 @@ int runClearance(const CommandLine &cl, const CheckerCatalogue &checkers)
     QueryContext context;
     for (const PoseRecord &p : poses)
     {
-        const RigidTransform pose = poseToTransform(p, problem.config.planar);
+        const RigidTransform pose = transformOfRow(p.values.data(), problem.config.planar);
         const double d = checker->distance(pose, context);
         free += d > 0.0 ? 1 : 0;
         out << (d > 0.0 ? d : -estimatePenetration(*checker, problem.scene, pose, context, 0).depth) << '\n';

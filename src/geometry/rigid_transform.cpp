@@ -25,11 +25,18 @@ double rescaledNorm(Vector &&v)
 
 RigidTransform RigidTransform::fromTranslationQuaternion(const Vec3 &t, double qw, double qx, double qy, double qz)
 {
+    return {unitQuaternion(qw, qx, qy, qz).toRotationMatrix(), t};
+}
+
+Eigen::Quaterniond RigidTransform::unitQuaternion(double qw, double qx, double qy, double qz)
+{
     Eigen::Quaterniond q(qw, qx, qy, qz);
     const double n = rescaledNorm(q.coeffs());
     if (n > 0.0 && std::isfinite(n))
         q.coeffs() /= n;
-    return {q.toRotationMatrix(), t};
+    else if (n == 0.0)
+        q.setIdentity();  // the same matrix as the zero quaternion gives, and a state OMPL accepts
+    return q;
 }
 
 RigidTransform RigidTransform::fromPlanarPose(double x, double y, double yaw)

@@ -68,37 +68,14 @@ std::vector<PoseRecord> parseRows(std::string_view text, const std::string &path
     return rows;
 }
 
-// Checks the quaternion (x y z w) at values[first..first+3] and scales it to unit norm.
+// Checks and normalises the quaternion of the pose row starting at values[first].
 void normaliseQuaternion(PoseRecord &row, std::size_t first, const std::string &path)
 {
-    double *q = row.values.data() + first;
-    const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (norm == 0.0)
-        throw InputError(path, row.line, "the quaternion (qx qy qz qw) is zero; a rotation needs a unit quaternion");
-    if (std::abs(norm - 1.0) > kQuaternionNormTolerance)
-    {
-        std::ostringstream message;
-        message << "the quaternion (qx qy qz qw) has norm " << norm << "; a unit quaternion is expected (within "
-                << kQuaternionNormTolerance << ")";
-        throw InputError(path, row.line, message.str());
-    }
-    // A quaternion already unit up to rounding is kept as it is: dividing by a norm that is 1 only
-    // up to a few ulps would change its bits, so a path written by writePoses would not read back
-    // bit for bit (found by fuzzing, tests/fuzz_corpus/path/regression_renormalised_quaternion.path).
-    if (std::abs(norm - 1.0) <= 8.0 * std::numeric_limits<double>::epsilon())
-        return;
-    for (int k = 0; k < 4; ++k)
-        q[k] /= norm;
+    const QuaternionCheck check = normaliseRowQuaternion(row.values.data() + first);
+    if (check.verdict != QuaternionCheck::Verdict::Unit)
+        throw InputError(path, row.line, quaternionProblem(check));
 }
 }  // namespace
-
-RigidTransform poseToTransform(const PoseRecord &pose, bool planar)
-{
-    const auto &v = pose.values;
-    if (planar)
-        return RigidTransform::fromPlanarPose(v[0], v[1], v[2]);
-    return RigidTransform::fromTranslationQuaternion(Vec3(v[0], v[1], v[2]), v[6], v[3], v[4], v[5]);
-}
 
 std::vector<PoseRecord> readPoses(const std::string &path, bool planar)
 {
@@ -111,7 +88,7 @@ std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sou
                                              planar ? "a planar pose (x y theta)" : "a pose (x y z qx qy qz qw)");
     if (!planar)
         for (PoseRecord &row : rows)
-            normaliseQuaternion(row, 3, sourceName);
+            normaliseQuaternion(row, 0, sourceName);
     return rows;
 }
 
@@ -129,8 +106,8 @@ std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view tex
     {
         if (!planar)
         {
-            normaliseQuaternion(row, 3, sourceName);
-            normaliseQuaternion(row, n + 3, sourceName);
+            normaliseQuaternion(row, 0, sourceName);
+            normaliseQuaternion(row, n, sourceName);
         }
         PoseRecord a{{row.values.begin(), row.values.begin() + long(n)}, row.line};
         PoseRecord b{{row.values.begin() + long(n), row.values.begin() + long(2 * n)}, row.line};

@@ -87,58 +87,6 @@ void configPoseToState(const ConfigPose &pose, bool planar, ob::State *state)
     s->rotation().z = q.z();
 }
 
-void poseValuesToState(const double *v, bool planar, ob::State *state)
-{
-    if (planar)
-    {
-        auto *s = state->as<ob::SE2StateSpace::StateType>();
-        s->setXY(v[0], v[1]);
-        // Into SO2's [-pi, pi) as SO2StateSpace::enforceBounds does: OMPL asserts that states are
-        // in bounds (an out-of-range yaw aborted `check-motion`); the rotation is the same.
-        double yaw = std::fmod(v[2], 2.0 * M_PI);
-        if (yaw < -M_PI)
-            yaw += 2.0 * M_PI;
-        else if (yaw >= M_PI)
-            yaw -= 2.0 * M_PI;
-        s->setYaw(yaw);
-        return;
-    }
-    auto *s = state->as<ob::SE3StateSpace::StateType>();
-    s->setXYZ(v[0], v[1], v[2]);
-    Eigen::Vector4d q(v[3], v[4], v[5], v[6]);
-    double n = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
-    // As RigidTransform::fromTranslationQuaternion: rescale when the squares over- or underflow, and
-    // take the zero quaternion as the identity, so that `check` and `check-motion` see one pose.
-    if (!(n >= 1e-150 && n <= 1e150))
-    {
-        const double largest = q.cwiseAbs().maxCoeff();
-        if (largest > 0.0)
-            q /= largest;
-        n = q.norm();
-    }
-    if (!(n > 0.0))
-    {
-        s->rotation().setIdentity();
-        return;
-    }
-    s->rotation().x = q[0] / n;
-    s->rotation().y = q[1] / n;
-    s->rotation().z = q[2] / n;
-    s->rotation().w = q[3] / n;
-}
-
-std::vector<double> stateToPoseValues(const ob::State *state, bool planar)
-{
-    if (planar)
-    {
-        const auto *s = state->as<ob::SE2StateSpace::StateType>();
-        return {s->getX(), s->getY(), s->getYaw()};
-    }
-    const auto *s = state->as<ob::SE3StateSpace::StateType>();
-    const auto &q = s->rotation();
-    return {s->getX(), s->getY(), s->getZ(), q.x, q.y, q.z, q.w};
-}
-
 std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, const LoadedProblem &problem,
                                                      std::shared_ptr<const CollisionChecker> checker, MotionCheck motion)
 {
@@ -156,9 +104,13 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
         // cheap (check-motion and the API default to 1e-6).
         validator->setContactTolerance(1e-3, true);
         si->setMotionValidator(validator);
+        planning.continuousValidator = std::move(validator);
     }
     else
+    {
         si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
+        planning.continuousValidator.reset();
+    }
     return planning.validity;
 }
 

@@ -11,18 +11,6 @@
 
 namespace hcd
 {
-RigidTransform poseOfState(const ompl::base::State *state, bool planar)
-{
-    if (planar)
-    {
-        const auto *s = state->as<ompl::base::SE2StateSpace::StateType>();
-        return RigidTransform::fromPlanarPose(s->getX(), s->getY(), s->getYaw());
-    }
-    const auto *s = state->as<ompl::base::SE3StateSpace::StateType>();
-    const auto &q = s->rotation();
-    return RigidTransform::fromTranslationQuaternion(Vec3(s->getX(), s->getY(), s->getZ()), q.w, q.x, q.y, q.z);
-}
-
 StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr &si,
                                            std::shared_ptr<const CollisionChecker> checker, CollisionScene scene,
                                            bool planar)

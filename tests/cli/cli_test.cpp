@@ -42,7 +42,7 @@ TEST(Cli, SolveWritesAValidPath)
     ASSERT_GE(poses.size(), 2u);
     const auto reference = makeChecker("bruteforce", problem.scene);
     for (const PoseRecord &p : poses)
-        EXPECT_FALSE(reference->collides(poseToTransform(p, true)));
+        EXPECT_FALSE(reference->collides(transformOfRow(p.values.data(), true)));
     EXPECT_NEAR(poses.front().values[0], problem.config.start.x, 1e-9);
     EXPECT_NEAR(poses.back().values[0], problem.config.goal.x, 1e-9);
 }

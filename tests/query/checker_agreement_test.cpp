@@ -111,7 +111,7 @@ TEST(CheckerAgreement, SampleSolutionPathsAreCollisionFree)
                 const auto checker = makeChecker(name, problem.scene);
                 // Neighbouring states of a path are close: sanitizer builds check every 32nd.
                 for (std::size_t i = 0; i < poses.size(); i += 4 * test::kSanitizerCaseDivisor - 3)
-                    EXPECT_FALSE(checker->collides(poseToTransform(poses[i], problem.config.planar)))
+                    EXPECT_FALSE(checker->collides(transformOfRow(poses[i].values.data(), problem.config.planar)))
                         << name << " calls a state of " << entry.path() << " line " << poses[i].line << " colliding";
             }
             ++paths;

@@ -25,6 +25,11 @@ struct RigidTransform
     /// quaternion gives the identity.
     static RigidTransform fromTranslationQuaternion(const Vec3 &t, double qw, double qx, double qy, double qz);
 
+    /// The quaternion (w, x, y, z) scaled to unit norm, rescaled first when the squares of its
+    /// components over- or underflow; the zero quaternion gives the identity, and non-finite
+    /// components are returned as they are. fromTranslationQuaternion rotates by this quaternion.
+    static Eigen::Quaterniond unitQuaternion(double qw, double qx, double qy, double qz);
+
     /// SE2 pose as OMPL.app builds it: translation (x, y, 0) times a rotation by yaw about +z.
     static RigidTransform fromPlanarPose(double x, double y, double yaw);
 

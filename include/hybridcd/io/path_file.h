@@ -2,7 +2,7 @@
 // OMPL.app's .path format: one pose per line, "x y z qx qy qz qw" (SE3) or "x y theta" (SE2).
 #pragma once
 
-#include "hybridcd/geometry/rigid_transform.h"
+#include "hybridcd/io/pose_codec.h"
 
 #include <iosfwd>
 #include <string>
@@ -12,28 +12,17 @@
 
 namespace hcd
 {
-/// The numbers of one pose line, in file order (7 for SE3, 3 for SE2).
+/// The numbers of one pose line, in file order (7 for SE3, 3 for SE2): a pose row (pose_codec.h).
 struct PoseRecord
 {
     std::vector<double> values;
     int line = 0;
 };
 
-/// How far from 1 the norm of a pose file's quaternion may be: OMPL.app and hybridcd write unit
-/// quaternions with 17 significant digits, so anything beyond this is a wrong file, not rounding.
-/// Accepted quaternions are normalised; a zero quaternion is never read as the identity.
-constexpr double kQuaternionNormTolerance = 1e-3;
-
-/// Number of leading columns a pose needs: 7 in 3D, 3 in the plane.
-inline std::size_t poseColumns(bool planar) { return planar ? 3 : 7; }
-
-/// The world-from-robot transform of a pose record (quaternion order x y z w in the file).
-RigidTransform poseToTransform(const PoseRecord &pose, bool planar);
-
 /// Reads poses; blank lines and '#' comments are skipped, columns after the pose are ignored.
 /// Throws InputError("FILE:LINE: ...") on a short line, a malformed or non-finite number, or a
 /// quaternion whose norm is 0 or differs from 1 by more than kQuaternionNormTolerance; accepted
-/// quaternions are normalised. A folder or a file that cannot be opened is an InputError too.
+/// quaternions are normalised (normaliseRowQuaternion). A folder or a file that cannot be opened is an InputError too.
 std::vector<PoseRecord> readPoses(const std::string &path, bool planar);
 
 /// Parses pose lines held in memory, as readPoses does a file; errors name `sourceName`.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "hybridcd/io/problem_scene.h"
+#include "hybridcd/ompl/state_pose.h"
 #include "hybridcd/ompl/state_validity_checker.h"
 
 #include <ompl/geometric/SimpleSetup.h>
@@ -23,10 +24,16 @@ enum class MotionCheck
 /// Parses "continuous" or "discrete"; throws std::invalid_argument otherwise.
 MotionCheck parseMotionCheck(const std::string &name);
 
+class ContinuousMotionValidator;
+
+/// A SimpleSetup and the hybridcd objects installed in its SpaceInformation, typed, so that callers
+/// tune them without casting OMPL's base pointers back.
 struct PlanningProblem
 {
     std::shared_ptr<ompl::geometric::SimpleSetup> setup;
     std::shared_ptr<StateValidityChecker> validity;
+    /// The motion validator installed for MotionCheck::Continuous; null for Discrete.
+    std::shared_ptr<ContinuousMotionValidator> continuousValidator;
     bool planar = false;
 };
 
@@ -40,7 +47,8 @@ PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_pt
                                     MotionCheck motion = MotionCheck::Continuous);
 
 /// Makes `checker` the one `planning` uses: a new StateValidityChecker (returned, also stored in
-/// planning.validity) and, for MotionCheck::Continuous, a ContinuousMotionValidator over it;
+/// planning.validity) and, for MotionCheck::Continuous, a ContinuousMotionValidator over it
+/// (also stored in planning.continuousValidator);
 /// for Discrete, OMPL's DiscreteMotionValidator. Used to switch checkers between benchmark runs.
 std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, const LoadedProblem &problem,
                                                      std::shared_ptr<const CollisionChecker> checker, MotionCheck motion);
@@ -48,12 +56,4 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
 /// The state of a .cfg pose (3D poses are axis-angle, planar ones yaw).
 void configPoseToState(const ConfigPose &pose, bool planar, ompl::base::State *state);
 
-/// Fills a state from .path columns (`values` holds 7 numbers, x y z qx qy qz qw, or 3, x y theta).
-/// The quaternion is normalised as RigidTransform::fromTranslationQuaternion does (rescaled when its
-/// squares over- or underflow; zero is the identity), so a state and poseToTransform of the same
-/// columns place the robot alike. A yaw is wrapped into [-pi, pi), the bounds OMPL asserts.
-void poseValuesToState(const double *values, bool planar, ompl::base::State *state);
-
-/// The .path columns of a state: x y z qx qy qz qw, or x y theta.
-std::vector<double> stateToPoseValues(const ompl::base::State *state, bool planar);
 }  // namespace hcd

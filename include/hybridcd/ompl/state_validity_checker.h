@@ -2,6 +2,7 @@
 // OMPL adapter: a StateValidityChecker for SE2 and SE3 rigid bodies backed by a CollisionChecker.
 #pragma once
 
+#include "hybridcd/ompl/state_pose.h"
 #include "hybridcd/query/collision_checker.h"
 #include "hybridcd/query/query_context_pool.h"
 
@@ -12,9 +13,6 @@
 
 namespace hcd
 {
-/// The world-from-robot transform of an SE2 or SE3 state, following OMPL.app's conventions.
-RigidTransform poseOfState(const ompl::base::State *state, bool planar);
-
 /** \brief Valid = inside the state-space bounds and collision-free (OMPL.app's definition).
     Thread-safe: the checker is immutable and the counters are atomic, so OMPL's parallel
     planners may call isValid concurrently. */

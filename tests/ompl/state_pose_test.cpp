@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/ompl/state_pose.h"
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+using namespace hcd;
+
+namespace
+{
+using TestRandom = std::mt19937;
+
+bool sameBits(const RigidTransform &a, const RigidTransform &b)
+{
+    for (int i = 0; i < 9; ++i)
+        if (!(a.rotation(i) == b.rotation(i)))
+            return false;
+    return a.translation == b.translation;
+}
+
+// row -> state -> transform, and row -> state -> row -> transform, against row -> transform.
+void expectRoundTrip(const ompl::base::StateSpacePtr &space, const double *row, bool planar)
+{
+    ompl::base::ScopedState<> state(space);
+    poseValuesToState(row, planar, state.get());
+    const RigidTransform direct = transformOfRow(row, planar);
+    EXPECT_TRUE(sameBits(poseOfState(state.get(), planar), direct));
+    const std::vector<double> back = stateToPoseValues(state.get(), planar);
+    ASSERT_EQ(back.size(), poseColumns(planar));
+    EXPECT_TRUE(sameBits(transformOfStateRow(back.data(), planar), direct));
+    EXPECT_TRUE(space->satisfiesBounds(state.get()));  // the yaw in [-pi, pi), the quaternion unit
+}
+}  // namespace
+
+TEST(StatePose, RowsSurviveTheOmplStateBitForBit)
+{
+    auto se3 = std::make_shared<ompl::base::SE3StateSpace>();
+    auto se2 = std::make_shared<ompl::base::SE2StateSpace>();
+    ompl::base::RealVectorBounds b3(3), b2(2);
+    b3.setLow(-100), b3.setHigh(100), b2.setLow(-100), b2.setHigh(100);
+    se3->setBounds(b3);
+    se2->setBounds(b2);
+    TestRandom random(7);
+    std::uniform_real_distribution<double> position(-10.0, 10.0), yaw(-20.0, 20.0);
+    std::normal_distribution<double> component(0.0, 1.0);
+    for (int i = 0; i < 2000 && !::testing::Test::HasFailure(); ++i)
+    {
+        double row[7] = {position(random), position(random), position(random)};
+        for (int k = 3; k < 7; ++k)
+            row[k] = component(random);
+        expectRoundTrip(se3, row, false);
+        const double planar[3] = {row[0], row[1], yaw(random)};
+        expectRoundTrip(se2, planar, true);
+    }
+    // The extreme quaternions and the zero one, which a state holds as the identity.
+    for (double scale : {1e200, 1e-200, 5e-324, 1e154, 0.0})
+    {
+        const double row[7] = {1, 2, 3, scale, 0, 0, scale};
+        expectRoundTrip(se3, row, false);
+    }
+}
+
+TEST(StatePose, StatesHoldTheRowInPathOrder)
+{
+    auto se3 = std::make_shared<ompl::base::SE3StateSpace>();
+    ompl::base::ScopedState<ompl::base::SE3StateSpace> s(se3);
+    const double row[7] = {1, 2, 3, 0, 0, 0, 2};  // not unit: stored as the identity rotation
+    poseValuesToState(row, false, s.get());
+    EXPECT_EQ(s->getX(), 1.0);
+    EXPECT_EQ(s->getZ(), 3.0);
+    EXPECT_EQ(s->rotation().w, 1.0);
+    EXPECT_EQ(s->rotation().x, 0.0);
+    const PoseRow back = rowOfState(s.get(), false);
+    EXPECT_EQ(back[6], 1.0);
+}
