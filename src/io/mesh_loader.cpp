@@ -177,6 +177,25 @@ bool forEachColladaArray(std::string_view data, const Visit &visit)
     return true;
 }
 
+// The text content of every <tag> or <tag ...> element of `data` (up to the next '<'), passed to
+// `visit(content)`.
+template <typename Visit>
+void forEachElementText(std::string_view data, std::string_view tag, const Visit &visit)
+{
+    const std::string open = "<" + std::string(tag);
+    for (std::size_t at = data.find(open); at != std::string_view::npos; at = data.find(open, at + 1))
+    {
+        const std::size_t after = at + open.size();
+        if (after >= data.size() || (data[after] != '>' && !std::isspace(static_cast<unsigned char>(data[after]))))
+            continue;  // another tag that starts with the same letters
+        const std::size_t close = data.find('>', after);
+        if (close == std::string_view::npos || data[close - 1] == '/')
+            continue;
+        const std::size_t end = data.find('<', close + 1);
+        visit(data.substr(close + 1, (end == std::string_view::npos ? data.size() : end) - close - 1));
+    }
+}
+
 // The value of attribute `key` in an element's attribute text, if present.
 std::optional<std::string_view> attributeValue(std::string_view attributes, std::string_view key)
 {
@@ -237,6 +256,22 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
         });
         if (!closed)
             problem = "an array element that is never closed";
+        // Index lists: assimp reads a non-digit as a huge index and allocates for it (gigabytes for
+        // one '$', found by fuzzing: regression_collada_index_not_a_number.dae). Indices are whole
+        // numbers, each below the data's size (every vertex takes more than one byte).
+        for (const char *tag : {"p", "v", "vcount", "h"})
+            forEachElementText(data, tag, [&](std::string_view text) {
+                if (!problem.empty())
+                    return;
+                const std::size_t bad = text.find_first_not_of("0123456789 \t\r\n");
+                if (bad != std::string_view::npos)
+                    problem = std::string("an index list <") + tag + "> holding '" + std::string(1, text[bad]) +
+                              "', which is not a whole number";
+                for (const std::string_view index : leadingTokens(text, text.size()))
+                    if (problem.empty() && leadingCount(index) > data.size())
+                        problem = std::string("an index list <") + tag + "> with the index " + std::string(index) +
+                                  ", beyond what its " + std::to_string(data.size()) + " bytes can hold";
+            });
         if (!problem.empty())
             throw InputError(name, 0, "malformed COLLADA file: " + problem);
     }

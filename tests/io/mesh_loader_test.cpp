@@ -312,3 +312,29 @@ TEST(MeshLoader, ColladaArraysNeedACountTheDataCanHold)
         EXPECT_THROW(loadMesh(test::writeTempFile("broken.dae", broken), MeshRole::Environment), InputError);
     }
 }
+
+// Found by fuzzing (tests/fuzz_corpus/mesh/regression_collada_index_not_a_number.dae): a '$' in a
+// COLLADA index list made assimp allocate gigabytes. Index lists must hold whole numbers that the
+// data's size can hold.
+TEST(MeshLoader, ColladaIndexListsHoldWholeNumbers)
+{
+    std::ifstream in(test::sourcePath("tests/fuzz_corpus/mesh/tet.dae"));
+    const std::string tet((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string::size_type at = tet.find("<p>0 2 1");
+    ASSERT_NE(at, std::string::npos);
+    for (const std::string &replacement : {"<p>$ 2 1", "<p>0 -2 1", "<p>0 2.5 1", "<p>0 99999999999999 1"})
+    {
+        std::string broken = tet;
+        broken.replace(at, 8, replacement);
+        try
+        {
+            loadMeshFromMemory(broken, "dae", MeshRole::Environment, "broken.dae");
+            ADD_FAILURE() << "accepted " << replacement;
+        }
+        catch (const InputError &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("malformed COLLADA file: an index list <p>"), std::string::npos)
+                << e.what();
+        }
+    }
+}
