@@ -19,7 +19,8 @@ namespace hcd::bench
 {
 /// Parses argv into `app` (declared through `cl`), then runs `body`: --help and --version end
 /// the run with 0, misuse (in parsing or a UsageError from `body`) with 1, other errors with 1.
-inline int runProgram(CLI::App &app, const cli::CommandLine &cl, int argc, char **argv, const std::function<int()> &body)
+inline int runProgram(CLI::App &app, const cli::CommandLine &cl, int argc, char **argv,
+                      const std::function<int()> &body)
 {
     if (const auto status = cli::parseArguments(app, argc, argv))
         return *status;

@@ -6,7 +6,8 @@
 // checker's distance differs from the first listed checker's by more than 1e-9 relative (0 and
 // positive answers differ when the robot is inside a closed obstacle, which FCL calls free).
 //
-//   hybridcd_bench_checkers [--states N] [--seed S] [--checker obb,fcl,...] [--no-reference] [--distance] PROBLEM.cfg...
+//   hybridcd_bench_checkers [--states N] [--seed S] [--checker obb,fcl,...] [--no-reference] [--distance]
+//   PROBLEM.cfg...
 //   (--help lists the options and the checkers)
 #include "bench_support.h"
 
@@ -133,9 +134,9 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             row << std::fixed << std::setprecision(0) << "| " << problem.config.name << " | " << name << " | "
                 << medians[name] << " | " << mean << " | %RATIO% | " << std::setprecision(1)
                 << 100.0 * double(colliding) / double(poses.size()) << "% | "
-                << (reference || distance ? std::to_string(disagreements) : std::string("-")) << " | " << std::setprecision(1)
-                << buildMs << " | " << std::setprecision(0) << double(context.stats.boundingVolumeTests) / double(poses.size())
-                << " |";
+                << (reference || distance ? std::to_string(disagreements) : std::string("-")) << " | "
+                << std::setprecision(1) << buildMs << " | " << std::setprecision(0)
+                << double(context.stats.boundingVolumeTests) / double(poses.size()) << " |";
             rows.push_back(row.str());
         }
         std::size_t r = 0;

@@ -71,9 +71,11 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
     for (const std::string &cfg : problems)
     {
         const LoadedProblem problem = loadProblem(cfg);
-        PlanningProblem obb = makePlanningProblem(problem, checkers.make("obb", problem.scene), MotionCheck::Continuous);
+        PlanningProblem obb =
+            makePlanningProblem(problem, checkers.make("obb", problem.scene), MotionCheck::Continuous);
         PlanningProblem fcl = makePlanningProblem(problem, checkers.make("fcl", problem.scene), MotionCheck::Discrete);
-        PlanningProblem obbDiscrete = makePlanningProblem(problem, checkers.make("obb", problem.scene), MotionCheck::Discrete);
+        PlanningProblem obbDiscrete =
+            makePlanningProblem(problem, checkers.make("obb", problem.scene), MotionCheck::Discrete);
         for (auto *p : {&obb, &fcl, &obbDiscrete})
             p->setup->setup();
         const auto si = obb.setup->getSpaceInformation();
@@ -94,12 +96,10 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             motions.emplace_back(a, b);
         }
         const auto continuous = timeAll(motions, [&](auto *a, auto *b) { return si->checkMotion(a, b); });
-        const auto discreteFcl = timeAll(motions, [&](auto *a, auto *b) {
-            return fcl.setup->getSpaceInformation()->checkMotion(a, b);
-        });
-        const auto discreteObb = timeAll(motions, [&](auto *a, auto *b) {
-            return obbDiscrete.setup->getSpaceInformation()->checkMotion(a, b);
-        });
+        const auto discreteFcl =
+            timeAll(motions, [&](auto *a, auto *b) { return fcl.setup->getSpaceInformation()->checkMotion(a, b); });
+        const auto discreteObb = timeAll(
+            motions, [&](auto *a, auto *b) { return obbDiscrete.setup->getSpaceInformation()->checkMotion(a, b); });
         // Touching: brute force at 20x OMPL's resolution finds a contact.
         const auto reference = checkers.make("bruteforce", problem.scene);
         ob::State *s = si->allocState();
@@ -125,10 +125,10 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
                 accepted += r.valid[i];
                 wrong += touchingPass && r.valid[i] && touching[i];
             }
-            std::cout << std::fixed << std::setprecision(1) << "| " << problem.config.name << " | " << validator << " | "
-                      << checker << " | " << r.median << " | " << std::setprecision(2) << r.median / discreteFcl.median
-                      << " | " << std::setprecision(1) << r.mean << " | " << std::setprecision(2)
-                      << r.mean / discreteFcl.mean << " | " << accepted << " | "
+            std::cout << std::fixed << std::setprecision(1) << "| " << problem.config.name << " | " << validator
+                      << " | " << checker << " | " << r.median << " | " << std::setprecision(2)
+                      << r.median / discreteFcl.median << " | " << std::setprecision(1) << r.mean << " | "
+                      << std::setprecision(2) << r.mean / discreteFcl.mean << " | " << accepted << " | "
                       << (touchingPass ? std::to_string(wrong) : std::string("-")) << " |\n";
         };
         row("continuous", "obb", continuous);

@@ -82,7 +82,8 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             order.push_back(name);
             const auto t0 = std::chrono::steady_clock::now();
             const auto checker = checkers.make(name, scene);
-            const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            const double buildMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             std::size_t bytes = 0;
             for (const HierarchyReport &h : checker->hierarchies())
                 bytes += h.memoryBytes;
@@ -128,7 +129,8 @@ int main(int argc, char **argv)
         .option("max-triangles", "N", "stop above N environment triangles (default 1100000)")
         .option("states", "N", "random states per size (default 2000)")
         .option("checker", "NAME[,NAME...]", "the checkers (default obb,fcl)")
-        .footer("\nExample:\n  hybridcd_bench_scaling --max-triangles 100000 --checker obb,fcl problems/window_3d.cfg\n\n" +
-                cli::checkerHelp(checkers));
+        .footer(
+            "\nExample:\n  hybridcd_bench_scaling --max-triangles 100000 --checker obb,fcl problems/window_3d.cfg\n\n" +
+            cli::checkerHelp(checkers));
     return bench::runProgram(app, cl, argc, argv, [&] { return run(cl, checkers); });
 }

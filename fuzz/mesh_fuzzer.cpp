@@ -19,10 +19,7 @@ namespace hcd::fuzz
 {
 namespace
 {
-bool startsWith(std::string_view text, std::string_view prefix)
-{
-    return text.substr(0, prefix.size()) == prefix;
-}
+bool startsWith(std::string_view text, std::string_view prefix) { return text.substr(0, prefix.size()) == prefix; }
 
 const char *formatOf(std::string_view text)
 {

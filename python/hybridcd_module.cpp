@@ -325,17 +325,20 @@ PYBIND11_MODULE(hybridcd, m)
     // Bad input files: "FILE:LINE: message", as the command-line tool prints them.
     py::register_exception<hcd::InputError>(m, "InputError", PyExc_ValueError);
 
-    m.def("checker_names", [] { return catalogue().names(); }, "Names Checker accepts, e.g. 'obb'.");
+    m.def(
+        "checker_names", [] { return catalogue().names(); }, "Names Checker accepts, e.g. 'obb'.");
 
     py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A robot mesh and an environment mesh.")
         .def_static("from_meshes", &sceneFromMeshes, py::arg("robot"), py::arg("environment"),
                     py::arg("planar") = false,
                     "Loads two mesh files (any format assimp reads) placed as OMPL.app places them: the robot "
                     "centred on its vertex mean (in x and y only when planar), the environment as it is.")
-        .def_property_readonly("planar", [](const Scene &s) { return s.data->config.planar; },
-                               "True for SE(2) poses (x, y, yaw), False for SE(3) poses.")
-        .def_property_readonly("pose_size", [](const Scene &s) { return hcd::poseColumns(s.data->config.planar); },
-                               "Columns of a pose row: 3 (planar) or 7 (3D).")
+        .def_property_readonly(
+            "planar", [](const Scene &s) { return s.data->config.planar; },
+            "True for SE(2) poses (x, y, yaw), False for SE(3) poses.")
+        .def_property_readonly(
+            "pose_size", [](const Scene &s) { return hcd::poseColumns(s.data->config.planar); },
+            "Columns of a pose row: 3 (planar) or 7 (3D).")
         .def_property_readonly("robot_mesh", [](const Scene &s) { return s.data->config.robotMesh; })
         .def_property_readonly("environment_mesh", [](const Scene &s) { return s.data->config.worldMesh; })
         .def_property_readonly("robot_triangles", [](const Scene &s) { return s.data->scene.robot->triangleCount(); })
@@ -352,37 +355,40 @@ PYBIND11_MODULE(hybridcd, m)
                     "line on bad input.")
         .def_property_readonly("path", [](const Problem &p) { return p.data->config.path; })
         .def_property_readonly("name", [](const Problem &p) { return p.data->config.name; })
-        .def_property_readonly("start",
-                               [](const Problem &p) {
-                                   const LoadedProblem &d = *p.data;
-                                   return configPoseColumns(d.config.start, d.config.planar, hcd::makeStateSpace(d));
-                               },
-                               "The start as a pose row (the state the planner is given).")
-        .def_property_readonly("goal",
-                               [](const Problem &p) {
-                                   const LoadedProblem &d = *p.data;
-                                   return configPoseColumns(d.config.goal, d.config.planar, hcd::makeStateSpace(d));
-                               },
-                               "The goal as a pose row.")
-        .def_property_readonly("volume",
-                               [](const Problem &p) {
-                                   const auto &c = p.data->config;
-                                   return py::make_tuple(volumeOf(c.volumeX), volumeOf(c.volumeY), volumeOf(c.volumeZ));
-                               },
-                               "The .cfg's volume: ((min, max) or None) for x, y and z.")
-        .def_property_readonly("bounds",
-                               [](const Problem &p) {
-                                   const auto space = hcd::makeStateSpace(*p.data);
-                                   const auto &bounds =
-                                       p.data->config.planar
-                                           ? space->as<ompl::base::SE2StateSpace>()->getBounds()
-                                           : space->as<ompl::base::SE3StateSpace>()->getBounds();
-                                   return py::make_tuple(toArray(bounds.low), toArray(bounds.high));
-                               },
-                               "(low, high) position bounds of the planner's state space: the volume (or the "
-                               "environment's box) grown to hold the start and goal.")
-        .def_property_readonly("warnings", [](const Problem &p) { return p.data->config.warnings; },
-                               "Notes on keys of the .cfg that were ignored.")
+        .def_property_readonly(
+            "start",
+            [](const Problem &p) {
+                const LoadedProblem &d = *p.data;
+                return configPoseColumns(d.config.start, d.config.planar, hcd::makeStateSpace(d));
+            },
+            "The start as a pose row (the state the planner is given).")
+        .def_property_readonly(
+            "goal",
+            [](const Problem &p) {
+                const LoadedProblem &d = *p.data;
+                return configPoseColumns(d.config.goal, d.config.planar, hcd::makeStateSpace(d));
+            },
+            "The goal as a pose row.")
+        .def_property_readonly(
+            "volume",
+            [](const Problem &p) {
+                const auto &c = p.data->config;
+                return py::make_tuple(volumeOf(c.volumeX), volumeOf(c.volumeY), volumeOf(c.volumeZ));
+            },
+            "The .cfg's volume: ((min, max) or None) for x, y and z.")
+        .def_property_readonly(
+            "bounds",
+            [](const Problem &p) {
+                const auto space = hcd::makeStateSpace(*p.data);
+                const auto &bounds = p.data->config.planar ? space->as<ompl::base::SE2StateSpace>()->getBounds()
+                                                           : space->as<ompl::base::SE3StateSpace>()->getBounds();
+                return py::make_tuple(toArray(bounds.low), toArray(bounds.high));
+            },
+            "(low, high) position bounds of the planner's state space: the volume (or the "
+            "environment's box) grown to hold the start and goal.")
+        .def_property_readonly(
+            "warnings", [](const Problem &p) { return p.data->config.warnings; },
+            "Notes on keys of the .cfg that were ignored.")
         .def("__repr__", [](const Problem &p) {
             return "<hybridcd.Problem '" + p.data->config.name + "'" + (p.data->config.planar ? " planar" : "") + ">";
         });

@@ -14,6 +14,8 @@ packages=(
   libcli11-dev
   # ompl_benchmark_statistics reads the benchmark logs into SQLite.
   ompl-demos python3
+  # scripts/check_format.sh
+  clang-format
   # The Python module and its test.
   pybind11-dev python3-dev python3-numpy
 )

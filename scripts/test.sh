@@ -4,8 +4,9 @@
 #   1. Release build, the whole suite;
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build, the whole suite;
 #   3. ThreadSanitizer build, the concurrency tests (8 threads on every checker and every query).
-#   4. the layering of the includes, the README's copy of the library example, and hybridcd as a
-#      consumer sees it: installed into a temporary prefix, found by CMake and pkg-config.
+#   4. the layering of the includes, the layout of the sources (.clang-format), the README's copies
+#      of the library and Python examples, and hybridcd as a consumer sees it: installed into a
+#      temporary prefix, found by CMake, pkg-config and python3.
 # HYBRIDCD_SANITIZERS=0 skips 2 and 3 (a quick local run; CI always runs them).
 # OMPL.app's problems are read from ../shared/omplapp-resources, or $HYBRIDCD_OMPLAPP_RESOURCES;
 # tests that need them skip with a message when they are absent, and fail when CI=true.
@@ -20,6 +21,7 @@ bash "$root/scripts/build.sh" -DHYBRIDCD_BUILD_TESTS=ON -DHYBRIDCD_BUILD_BENCH=O
 
 step "include layers, README example, installed package"
 python3 "$root/scripts/check_layers.py" "$root"
+bash "$root/scripts/check_format.sh"
 python3 "$root/scripts/check_readme_files.py" "$root"
 bash "$root/scripts/test_consumer.sh" "$root/problems/window_3d.cfg"
 

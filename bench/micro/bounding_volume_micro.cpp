@@ -74,7 +74,8 @@ void BM_EllipsoidOverlap(benchmark::State &state)
     for (auto &p : pairs)
     {
         p.first = Ellipsoid::fromAxes(Vec3::Zero(), randomRotation(), Vec3(e(rng), e(rng), e(rng)));
-        p.second = Ellipsoid::fromAxes(Vec3(u(rng), u(rng), u(rng)) * 2.0, randomRotation(), Vec3(e(rng), e(rng), e(rng)));
+        p.second =
+            Ellipsoid::fromAxes(Vec3(u(rng), u(rng), u(rng)) * 2.0, randomRotation(), Vec3(e(rng), e(rng), e(rng)));
     }
     std::size_t i = 0, hits = 0;
     for (auto _ : state)

@@ -56,7 +56,9 @@ ContactValue contactFunction(const Mat3 &la, const Mat3 &lb, const Vec3 &d, doub
         return value;
     // M = P R^T R P^T, so d^T M^{-1} d = |R^{-T} P^T d|^2 and M^{-1} d = P R^{-1} R^{-T} P^T d.
     const auto &permutation = qr.colsPermutation();
-    auto halfSolve = [&](const Vec3 &v) { return Vec3(r.transpose().triangularView<Eigen::Lower>().solve(permutation.transpose() * v)); };
+    auto halfSolve = [&](const Vec3 &v) {
+        return Vec3(r.transpose().triangularView<Eigen::Lower>().solve(permutation.transpose() * v));
+    };
     const Vec3 y = halfSolve(d);
     const Vec3 x = permutation * Vec3(r.triangularView<Eigen::Upper>().solve(y));
     // dM/dl = B^{-1} - A^{-1}; g = d^T M^{-1} d, g' = -x^T M' x, g'' = 2 (M' x)^T M^{-1} (M' x).
@@ -70,7 +72,8 @@ ContactValue contactFunction(const Mat3 &la, const Mat3 &lb, const Vec3 &d, doub
     value.df = (1.0 - 2.0 * l) * g + w * g1;
     value.d2f = -2.0 * g + 2.0 * (1.0 - 2.0 * l) * g1 + w * g2;
     value.normal = x;
-    value.ok = std::isfinite(value.f) && std::isfinite(value.df) && std::isfinite(value.d2f) && x.allFinite() && g > 0.0;
+    value.ok =
+        std::isfinite(value.f) && std::isfinite(value.df) && std::isfinite(value.d2f) && x.allFinite() && g > 0.0;
     return value;
 }
 

@@ -334,8 +334,9 @@ DesignFit<K> fitWhitened(const std::vector<Eigen::Matrix<double, K, 1>> &y, cons
     candidateCount = candidates.size();
     using MatK = Eigen::Matrix<double, K, K>;
     auto usable = [](const DesignFit<K> &fit) {
-        return fit.center.allFinite() && fit.covariance.allFinite() && Eigen::LLT<MatK>(fit.covariance).info() == Eigen::Success &&
-               std::isfinite(fit.maxValue) && fit.maxValue > 0.0;
+        return fit.center.allFinite() && fit.covariance.allFinite() &&
+               Eigen::LLT<MatK>(fit.covariance).info() == Eigen::Success && std::isfinite(fit.maxValue) &&
+               fit.maxValue > 0.0;
     };
     DesignFit<K> fit = fitDesign<K>(y, std::move(candidates), options);
     if (usable(fit))
@@ -359,7 +360,8 @@ DesignFit<K> fitWhitened(const std::vector<Eigen::Matrix<double, K, 1>> &y, cons
     const Eigen::LLT<MatK> llt(fit.covariance);
     fit.maxValue = 0.0;
     for (const auto &p : y)
-        fit.maxValue = std::max(fit.maxValue, llt.matrixL().solve(Eigen::Matrix<double, K, 1>(p - fit.center)).squaredNorm());
+        fit.maxValue =
+            std::max(fit.maxValue, llt.matrixL().solve(Eigen::Matrix<double, K, 1>(p - fit.center)).squaredNorm());
     return fit;
 }
 }  // namespace
@@ -416,7 +418,8 @@ MveeResult fitMinimumVolumeEllipsoid(const std::vector<Vec3> &points, const Mvee
         double spread = 0.0;
         for (const Vec3 &p : points)
             spread = std::max(spread, (p - origin).norm());
-        const double radius = std::max({kPointRadius, 4.0 * std::numeric_limits<double>::epsilon() * coordinateMagnitude, 2.0 * spread});
+        const double radius =
+            std::max({kPointRadius, 4.0 * std::numeric_limits<double>::epsilon() * coordinateMagnitude, 2.0 * spread});
         result.ellipsoid = Ellipsoid::fromAxes(origin, Mat3::Identity(), Vec3::Constant(radius));
         result.candidates = 1;
     }
@@ -443,7 +446,9 @@ MveeResult fitMinimumVolumeEllipsoid(const std::vector<Vec3> &points, const Mvee
         const Eigen::VectorXd mid = 0.5 * (lo + hi);
         const Eigen::VectorXd halfWidth = (0.5 * (hi - lo)).cwiseMax(std::numeric_limits<double>::min());
         const Eigen::Matrix<double, 3, Eigen::Dynamic> kept = hullBasis * principal;
-        auto whiten = [&](std::size_t i) { return Eigen::VectorXd((local.row(Eigen::Index(i)).transpose() - mid).cwiseQuotient(halfWidth)); };
+        auto whiten = [&](std::size_t i) {
+            return Eigen::VectorXd((local.row(Eigen::Index(i)).transpose() - mid).cwiseQuotient(halfWidth));
+        };
 
         // The fitted ellipsoid in whitened coordinates as cy + gy z, |z| <= 1.
         Eigen::VectorXd cy = Eigen::VectorXd::Zero(dimension);
@@ -453,8 +458,7 @@ MveeResult fitMinimumVolumeEllipsoid(const std::vector<Vec3> &points, const Mvee
             constexpr int K = std::decay_t<decltype(fit.center)>::RowsAtCompileTime;
             cy = fit.center;
             const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, K, K>> solver(fit.covariance);
-            gy = solver.eigenvectors() *
-                 (fit.maxValue * solver.eigenvalues().cwiseMax(0.0)).cwiseSqrt().asDiagonal();
+            gy = solver.eigenvectors() * (fit.maxValue * solver.eigenvalues().cwiseMax(0.0)).cwiseSqrt().asDiagonal();
             khachiyanInflation = std::max(1.0, fit.maxValue / K);
             result.optimalityGap = std::max(0.0, fit.maxValue / K - 1.0);
             result.iterations = fit.iterations;

@@ -16,14 +16,15 @@ void appendMappedSphere(ExportMesh &mesh, const Vec3 &center, const Mat3 &linear
         for (int j = 0; j < kSlices; ++j)
         {
             const double theta = 2.0 * M_PI * j / kSlices;
-            mesh.vertices.push_back(center + linear * Vec3(std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta),
-                                                          std::cos(phi)));
+            mesh.vertices.push_back(center + linear * Vec3(std::sin(phi) * std::cos(theta),
+                                                           std::sin(phi) * std::sin(theta), std::cos(phi)));
         }
     }
     for (int i = 0; i < kStacks; ++i)
         for (int j = 0; j < kSlices; ++j)
         {
-            const std::size_t a = base + std::size_t(i * kSlices + j), b = base + std::size_t(i * kSlices + (j + 1) % kSlices);
+            const std::size_t a = base + std::size_t(i * kSlices + j),
+                              b = base + std::size_t(i * kSlices + (j + 1) % kSlices);
             const std::size_t c = a + kSlices, d = b + kSlices;
             if (i > 0)
                 mesh.triangles.push_back({a, b, d});

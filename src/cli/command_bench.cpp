@@ -90,7 +90,8 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         throw UsageError("shard " + std::to_string(shardIndex) + "/" + std::to_string(shardCount) + " has no runs of " +
                          std::to_string(totalRuns));
     // A benchmark may run for hours: an unwritable log or an impossible start must fail now.
-    const std::string out = cl.text("out", cfg.name + (shardCount > 1 ? ".shard" + std::to_string(shardIndex) : "") + ".log");
+    const std::string out =
+        cl.text("out", cfg.name + (shardCount > 1 ? ".shard" + std::to_string(shardIndex) : "") + ".log");
     checkOutputPath(out, cl.has("out") ? "--out" : "the default output", inputFilesOf(problem));
     requireStartAndGoalInVolume(cfg);
 
@@ -148,8 +149,8 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         run["checker VARCHAR(32)"] = slot.name;
         run["run index INTEGER"] = std::to_string(shardIndex + std::size_t(local) * shardCount);
         ++done;
-        std::cerr << "\r[" << done << "/" << totalThisShard << "] " << planner->getName() << " run " << local + 1
-                  << "/" << shardRuns << "   " << std::flush;
+        std::cerr << "\r[" << done << "/" << totalThisShard << "] " << planner->getName() << " run " << local + 1 << "/"
+                  << shardRuns << "   " << std::flush;
     });
 
     ompl::tools::Benchmark::Request request(timeLimit, memoryLimit, shardRuns, 0.05, false, false, true);

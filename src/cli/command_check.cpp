@@ -10,8 +10,8 @@
 
 #include <chrono>
 #include <iomanip>
-#include <sstream>
 #include <iostream>
+#include <sstream>
 
 namespace hcd::cli
 {
@@ -88,15 +88,15 @@ int runContacts(const CommandLine &cl, const CheckerCatalogue &checkers)
     QueryContext context;
     for (std::size_t p = 0; p < poses.size(); ++p)
     {
-        const auto found =
-            checker->contacts(transformOfRow(poses[p].values.data(), problem.config.planar), std::size_t(limit), context);
+        const auto found = checker->contacts(transformOfRow(poses[p].values.data(), problem.config.planar),
+                                             std::size_t(limit), context);
         out << "pose " << p + 1 << " (line " << poses[p].line << "): " << found.size() << " contact"
             << (found.size() == 1 ? "" : "s") << (found.size() == std::size_t(limit) ? " (limit reached)" : "") << '\n';
         for (const ContactPair &c : found)
         {
             const char *kind = c.kind == ContactPair::Kind::Triangles ? "triangles"
-                               : c.kind == ContactPair::Kind::Pieces ? "pieces"
-                                                                     : "containment (components)";
+                               : c.kind == ContactPair::Kind::Pieces  ? "pieces"
+                                                                      : "containment (components)";
             out << "  " << kind << " robot " << c.robotElement << " environment " << c.environmentElement << " at "
                 << c.witness.x() << ' ' << c.witness.y() << ' ' << c.witness.z() << '\n';
         }

@@ -168,8 +168,8 @@ const std::string &CommandLine::problem() const
 {
     if (positionals_.size() != 1)
         throw UsageError(positionals_.empty() ? "missing the problem file (.cfg)"
-                                              : "expected one problem file, got " + std::to_string(positionals_.size()) +
-                                                    " positional arguments");
+                                              : "expected one problem file, got " +
+                                                    std::to_string(positionals_.size()) + " positional arguments");
     return positionals_.front();
 }
 
@@ -215,7 +215,8 @@ std::optional<int> parseArguments(CLI::App &app, int argc, char **argv)
         if (!a->remaining().empty())
         {
             const std::vector<std::string> extras = a->remaining();
-            const auto option = std::find_if(extras.begin(), extras.end(), [](const std::string &w) { return w.rfind('-', 0) == 0; });
+            const auto option =
+                std::find_if(extras.begin(), extras.end(), [](const std::string &w) { return w.rfind('-', 0) == 0; });
             return printUsageError(selected, describeExtra(*a, option != extras.end() ? *option : extras.front()));
         }
     return std::nullopt;

@@ -24,7 +24,8 @@ void declareCheckMotion(CommandLine &cl)
 {
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
         .option("motions", "FILE", "two poses per line, start then end (required)")
-        .option("contact-tolerance", "FRACTION", "bracket the first contact to this fraction of the motion, in (0, 1] (default 1e-6)")
+        .option("contact-tolerance", "FRACTION",
+                "bracket the first contact to this fraction of the motion, in (0, 1] (default 1e-6)")
         .flag("verdict-only", "only 1 or 0 per motion, stopping at the first contact seen (as a planner checks)");
     addCheckerOptions(cl, false);
     cl.footer(R"(
@@ -48,8 +49,8 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
     const auto motions = readMotions(cl.text("motions", ""), problem.config.planar);
-    PlanningProblem planning = makePlanningProblem(problem, checkers.make(checkerName, problem.scene, options),
-                                                   MotionCheck::Continuous);
+    PlanningProblem planning =
+        makePlanningProblem(problem, checkers.make(checkerName, problem.scene, options), MotionCheck::Continuous);
     const auto si = planning.setup->getSpaceInformation();
     ContinuousMotionValidator *validator = planning.continuousValidator.get();
     validator->setContactTolerance(contactTolerance);
@@ -87,8 +88,8 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     si->freeState(b);
     si->freeState(last);
     std::cout << out.str() << std::flush;
-    std::cerr << "checked " << motions.size() << " motions with '" << checkerName << "': " << free
-              << " free, " << motions.size() - free << " colliding; mean "
+    std::cerr << "checked " << motions.size() << " motions with '" << checkerName << "': " << free << " free, "
+              << motions.size() - free << " colliding; mean "
               << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion\n";
     return kSuccess;
 }

@@ -29,7 +29,7 @@ int runContacts(const CommandLine &cl, const CheckerCatalogue &checkers);
 enum ExitStatus
 {
     kSuccess = 0,
-    kBadInput = 1,    ///< unreadable or malformed input, unknown names, misuse
-    kNotSolved = 2,   ///< the planner found no exact solution in time
+    kBadInput = 1,   ///< unreadable or malformed input, unknown names, misuse
+    kNotSolved = 2,  ///< the planner found no exact solution in time
 };
 }  // namespace hcd::cli

@@ -37,7 +37,8 @@ const Command kCommands[] = {
     {"bench", "OMPL benchmark log of planners and checkers (optionally one shard)", declareBench, runBench},
 };
 
-const char *kNotes = R"(Every command takes a problem file (OMPL.app's .cfg) and prints its own options and examples with
+const char *kNotes =
+    R"(Every command takes a problem file (OMPL.app's .cfg) and prints its own options and examples with
 'hybridcd COMMAND --help'; planners are listed by 'hybridcd solve PROBLEM.cfg --planner help'.
 Exit status: 0 success, 1 bad input or options (nothing is written), 2 solve found no path in time.
 Output files are written to a temporary file and renamed into place; no output may replace the

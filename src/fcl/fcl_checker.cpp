@@ -101,7 +101,8 @@ std::vector<HierarchyReport> FclChecker::hierarchies(bool) const
 CheckerEntry fclCheckerEntry()
 {
     return {"fcl", "FCL's OBBRSS trees as OMPL.app sets them up; meshes are surfaces (for comparisons)",
-            [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<FclChecker>(s); }, true, false};
+            [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<FclChecker>(s); }, true,
+            false};
 }
 
 CheckerCatalogue checkersWithFcl()

@@ -81,8 +81,9 @@ std::vector<std::pair<Triangle, std::uint32_t>> distinctFaces(const TriangleMesh
     for (std::uint32_t t : triangles)
         faces.emplace_back(faceKey(mesh.triangles[t], canonical), t);
     std::sort(faces.begin(), faces.end());
-    faces.erase(std::unique(faces.begin(), faces.end(), [](const auto &x, const auto &y) { return x.first == y.first; }),
-                faces.end());
+    faces.erase(
+        std::unique(faces.begin(), faces.end(), [](const auto &x, const auto &y) { return x.first == y.first; }),
+        faces.end());
     return faces;
 }
 
@@ -270,7 +271,8 @@ struct Solid
 
     Solid(const TriangleMesh &mesh, std::uint32_t componentIndex, const MeshComponent &component,
           const std::vector<std::pair<Triangle, std::uint32_t>> &faces)
-        : component(componentIndex), bounds(component.bounds)
+        : component(componentIndex),
+          bounds(component.bounds)
     {
         triangles.reserve(faces.size());
         triangleBounds.reserve(faces.size());

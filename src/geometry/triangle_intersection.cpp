@@ -173,8 +173,10 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
     }
 
     // General position: an edge of one triangle meets the other triangle.
-    return segmentCrossesTriangle(a0, a1, sa0, sa1, b0, b1, b2) || segmentCrossesTriangle(a1, a2, sa1, sa2, b0, b1, b2) ||
-           segmentCrossesTriangle(a2, a0, sa2, sa0, b0, b1, b2) || segmentCrossesTriangle(b0, b1, sb0, sb1, a0, a1, a2) ||
+    return segmentCrossesTriangle(a0, a1, sa0, sa1, b0, b1, b2) ||
+           segmentCrossesTriangle(a1, a2, sa1, sa2, b0, b1, b2) ||
+           segmentCrossesTriangle(a2, a0, sa2, sa0, b0, b1, b2) ||
+           segmentCrossesTriangle(b0, b1, sb0, sb1, a0, a1, a2) ||
            segmentCrossesTriangle(b1, b2, sb1, sb2, a0, a1, a2) || segmentCrossesTriangle(b2, b0, sb2, sb0, a0, a1, a2);
 }
 }  // namespace hcd

@@ -93,7 +93,8 @@ std::size_t weldAndDropDegenerate(TriangleMesh &mesh)
     for (const Triangle &t : mesh.triangles)
     {
         const Triangle r{remap[t[0]], remap[t[1]], remap[t[2]]};
-        if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2] || isDegenerateTriangle(welded[r[0]], welded[r[1]], welded[r[2]]))
+        if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2] ||
+            isDegenerateTriangle(welded[r[0]], welded[r[1]], welded[r[2]]))
             continue;
         kept.push_back(r);
     }

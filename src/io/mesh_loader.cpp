@@ -72,9 +72,10 @@ const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, uns
         {
             const unsigned n = m->mFaces[f].mNumIndices;
             if (n == 0 || m->mFaces[f].mIndices == nullptr)
-                throw InputError(name, 0, "malformed mesh: face " + std::to_string(f) + " of mesh " +
-                                              std::to_string(i) + " has no vertex index");
-            types |= n == 1 ? aiPrimitiveType_POINT
+                throw InputError(name, 0,
+                                 "malformed mesh: face " + std::to_string(f) + " of mesh " + std::to_string(i) +
+                                     " has no vertex index");
+            types |= n == 1   ? aiPrimitiveType_POINT
                      : n == 2 ? aiPrimitiveType_LINE
                      : n == 3 ? aiPrimitiveType_TRIANGLE
                               : aiPrimitiveType_POLYGON;
@@ -164,7 +165,8 @@ bool forEachColladaArray(std::string_view data, const Visit &visit)
     for (std::size_t at = data.find('<'); at != std::string_view::npos; at = data.find('<', at + 1))
     {
         std::size_t nameEnd = at + 1;
-        while (nameEnd < data.size() && (std::isalnum(static_cast<unsigned char>(data[nameEnd])) || data[nameEnd] == '_'))
+        while (nameEnd < data.size() &&
+               (std::isalnum(static_cast<unsigned char>(data[nameEnd])) || data[nameEnd] == '_'))
             ++nameEnd;
         const std::string_view name = data.substr(at + 1, nameEnd - at - 1);
         if (name.size() <= 6 || name.substr(name.size() - 6) != "_array")
@@ -290,8 +292,8 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
         if (count > data.size())
             throw InputError(name, 0,
                              "malformed OFF file: its header announces " + std::string(tokens[k]) + " " +
-                                 (k == at ? "vertices" : "faces") + ", more than its " +
-                                 std::to_string(data.size()) + " bytes can hold");
+                                 (k == at ? "vertices" : "faces") + ", more than its " + std::to_string(data.size()) +
+                                 " bytes can hold");
     }
 }
 
@@ -309,10 +311,10 @@ std::string extensionOf(const std::string &path)
 // before any copy).
 Imported import(Assimp::Importer &importer, const Source &source, unsigned flags, const MeshLimits &limits)
 {
-    const aiScene *read =
-        source.inMemory ? importer.ReadFileFromMemory(source.data.data(), source.data.size(),
-                                                      aiProcess_ValidateDataStructure, source.formatHint->c_str())
-                        : importer.ReadFile(source.name, aiProcess_ValidateDataStructure);
+    const aiScene *read = source.inMemory
+                              ? importer.ReadFileFromMemory(source.data.data(), source.data.size(),
+                                                            aiProcess_ValidateDataStructure, source.formatHint->c_str())
+                              : importer.ReadFile(source.name, aiProcess_ValidateDataStructure);
     const aiScene *scene = postProcess(importer, read, flags, source.name);
     const std::string &path = source.name;
     if (scene == nullptr)
@@ -321,9 +323,8 @@ Imported import(Assimp::Importer &importer, const Source &source, unsigned flags
         throw InputError(path, 0, "mesh file holds no geometry");
 
     std::size_t triangles = 0;
-    visitNodes(scene, scene->mRootNode, aiMatrix4x4(), [&](const aiMesh *m, const aiMatrix4x4 &) {
-        triangles += m->mNumFaces;
-    });
+    visitNodes(scene, scene->mRootNode, aiMatrix4x4(),
+               [&](const aiMesh *m, const aiMatrix4x4 &) { triangles += m->mNumFaces; });
     if (triangles > limits.maxTriangles)
         throw InputError(path, 0,
                          "the mesh has " + std::to_string(triangles) + " faces, above the limit of " +
@@ -397,8 +398,9 @@ LoadedMesh loadFrom(Assimp::Importer &importer, const Source &source, MeshRole r
     const std::size_t vertexCount = imported.vertexCount;
     out.sourceTriangles = corners.size() / 3;
     if (corners.empty())
-        throw InputError(path, 0, "mesh file holds no triangle (" + std::to_string(out.skippedNonTriangles) +
-                                      " point or line primitives only)");
+        throw InputError(path, 0,
+                         "mesh file holds no triangle (" + std::to_string(out.skippedNonTriangles) +
+                             " point or line primitives only)");
 
     aiVector3D shift(0.0f, 0.0f, 0.0f);
     if (role != MeshRole::Environment)

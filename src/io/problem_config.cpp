@@ -189,7 +189,8 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
             if (dot == std::string::npos)
             {
                 if (!value.empty())
-                    throw InputError(path, lineNo, "planner declaration '" + key + "=' takes no value, got '" + value + "'");
+                    throw InputError(path, lineNo,
+                                     "planner declaration '" + key + "=' takes no value, got '" + value + "'");
                 cfg.planners.push_back({lower(key), "", {}});
                 continue;
             }
@@ -197,7 +198,8 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
             auto it = std::find_if(cfg.planners.rbegin(), cfg.planners.rend(),
                                    [&](const PlannerRequest &r) { return r.type == type; });
             if (it == cfg.planners.rend())
-                throw InputError(path, lineNo, "setting for planner '" + type + "' before a '" + type + "=' line declares it");
+                throw InputError(path, lineNo,
+                                 "setting for planner '" + type + "' before a '" + type + "=' line declares it");
             // A setting repeated for the same planner is a mistake: the last one would silently win.
             const bool repeated = param == "name" ? !it->displayName.empty()
                                                   : std::any_of(it->parameters.begin(), it->parameters.end(),
@@ -259,8 +261,8 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
             if (pose.theta != 0.0 && pose.axisX == 0.0 && pose.axisY == 0.0 && pose.axisZ == 0.0)
             {
                 const Entry *at = get(prefix + ".axis.x") ? get(prefix + ".axis.x") : get(prefix + ".theta");
-                throw InputError(path, at->line, prefix + ".axis is zero; a rotation of " + prefix +
-                                                     ".theta needs a non-zero axis");
+                throw InputError(path, at->line,
+                                 prefix + ".axis is zero; a rotation of " + prefix + ".theta needs a non-zero axis");
             }
         }
     };
@@ -287,7 +289,8 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
         const std::string obj = lower(o->value);
         if (obj != "length" && obj != "max min clearance" && obj != "mechanical work")
             throw InputError(path, o->line,
-                             "unknown objective '" + o->value + "'; expected length, max min clearance or mechanical work");
+                             "unknown objective '" + o->value +
+                                 "'; expected length, max min clearance or mechanical work");
         cfg.objective = obj;
     }
     if (const Entry *t = get("objective.threshold"))

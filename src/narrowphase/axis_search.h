@@ -26,9 +26,12 @@ public:
         Negative
     };
 
-    AxisSearch(const ConvexPiece &a, const ConvexPiece &b,
-               double stopAbove = std::numeric_limits<double>::infinity(), Ties ties = Ties::Positive)
-        : a_(a), b_(b), stopAbove_(stopAbove), ties_(ties)
+    AxisSearch(const ConvexPiece &a, const ConvexPiece &b, double stopAbove = std::numeric_limits<double>::infinity(),
+               Ties ties = Ties::Positive)
+        : a_(a),
+          b_(b),
+          stopAbove_(stopAbove),
+          ties_(ties)
     {
     }
 

@@ -17,12 +17,14 @@ double distanceToTriangles(const Vec3 &p, const TriangleMesh &mesh, const std::v
 {
     double best = std::numeric_limits<double>::infinity();
     for (std::uint32_t t : triangles)
-        best = std::min(best, (p - closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2))).norm());
+        best = std::min(
+            best, (p - closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2))).norm());
     return best;
 }
 }  // namespace
 
-Vec3 triangleContactPoint(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
+Vec3 triangleContactPoint(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                          const Vec3 &b2)
 {
     return intersectConvexPieces(ConvexPiece::hullOf({a0, a1, a2}), ConvexPiece::hullOf({b0, b1, b2})).witness;
 }
@@ -46,7 +48,8 @@ std::vector<std::vector<Vec3>> facetPolygons(const ConvexPiece &hull)
         const Vec3 n = hull.normals[f];
         const Vec3 u = (facet[0] - centre).normalized(), w = n.cross(u);
         std::sort(facet.begin(), facet.end(), [&](const Vec3 &a, const Vec3 &b) {
-            return std::atan2((a - centre).dot(w), (a - centre).dot(u)) < std::atan2((b - centre).dot(w), (b - centre).dot(u));
+            return std::atan2((a - centre).dot(w), (a - centre).dot(u)) <
+                   std::atan2((b - centre).dot(w), (b - centre).dot(u));
         });
         facets.push_back(std::move(facet));
     }
@@ -61,7 +64,10 @@ double hullVolume(const ConvexPiece &hull)
     double volume = 0.0;
     for (const std::vector<Vec3> &facet : facetPolygons(hull))
         for (std::size_t i = 1; i + 1 < facet.size(); ++i)
-            volume += std::fabs((facet[0] - hull.centroid).dot((facet[i] - hull.centroid).cross(facet[i + 1] - hull.centroid))) / 6.0;
+            volume +=
+                std::fabs(
+                    (facet[0] - hull.centroid).dot((facet[i] - hull.centroid).cross(facet[i + 1] - hull.centroid))) /
+                6.0;
     return volume;
 }
 
@@ -89,7 +95,8 @@ double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const
     return worst;
 }
 
-double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles)
+double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
+                          const std::vector<std::uint32_t> &triangles)
 {
     if (triangles.size() == 1)
         return 0.0;  // the hull is the triangle itself

@@ -37,7 +37,7 @@ void orderBySlack(const small_lp::Row<4> *rows, int n, small_lp::Row<4> *sorted,
         lo = std::min(lo, rows[i].b), hi = std::max(hi, rows[i].b);
     const double scale = hi > lo ? double(n) / (hi - lo) : 0.0;
     const double last = double(n - 1);
-    int *const count = counts.data();          // n + 1 entries
+    int *const count = counts.data();             // n + 1 entries
     int *const bucketOf = counts.data() + n + 1;  // n entries
     std::fill(count, count + n + 1, 0);
     for (int i = 0; i < n; ++i)
@@ -143,8 +143,7 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
             const Eigen::Vector4d lambda = columns.fullPivLu().solve(Eigen::Vector4d::UnitW());
             Vec3 direction = Vec3::Zero();
             for (int j = 0; j < 4; ++j)
-                direction +=
-                    (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * columns.col(j).head<3>();
+                direction += (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * columns.col(j).head<3>();
             if (lambda.allFinite() && separateAlong(direction, a, b, clearlyApart ? 0.0 : tolerance, result))
             {
                 result.certificate = IntersectionResult::Certificate::LpDual;

@@ -334,8 +334,5 @@ double ConvexPiece::maxViolation(const Vec3 &p) const
     return worst;
 }
 
-double ConvexPiece::magnitude() const
-{
-    return maxAbsCoordinate(vertices);
-}
+double ConvexPiece::magnitude() const { return maxAbsCoordinate(vertices); }
 }  // namespace hcd

@@ -121,12 +121,10 @@ int pivotOf(const Row<K> &h, double &pivot)
 }
 
 template <int K>
-bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps, double *x, int *basis,
-            Workspace &ws);
+bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps, double *x, int *basis, Workspace &ws);
 
 template <>
-bool seidel<1>(Row<1> *rows, int n, const double *c, const Box<1> &box, double eps, double *x, int *basis,
-               Workspace &)
+bool seidel<1>(Row<1> *rows, int n, const double *c, const Box<1> &box, double eps, double *x, int *basis, Workspace &)
 {
     Interval interval(box.lo[0], box.hi[0], box.loId[0], box.hiId[0]);
     for (int i = 0; i < n; ++i)
@@ -154,8 +152,7 @@ bool narrowOnLine(const Row<2> *__restrict rows, int n, double g, double q, doub
 // Two dimensions, with the one-dimensional subproblem done in place (it is where most of the
 // work happens, so its rows are never written out).
 template <>
-bool seidel<2>(Row<2> *rows, int n, const double *c, const Box<2> &box, double eps, double *x, int *basis,
-               Workspace &)
+bool seidel<2>(Row<2> *rows, int n, const double *c, const Box<2> &box, double eps, double *x, int *basis, Workspace &)
 {
     boxCorner<2>(c, box, x, basis);
     for (int i = firstViolated<2>(rows, 0, n, x, eps); i < n; i = firstViolated<2>(rows, i + 1, n, x, eps))
@@ -226,8 +223,7 @@ void substituteRows(const Row<K> *rows, int n, int k, const double *g, double q,
 }
 
 template <int K>
-bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps, double *x, int *basis,
-            Workspace &ws)
+bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps, double *x, int *basis, Workspace &ws)
 {
     boxCorner<K>(c, box, x, basis);
     Row<K - 1> *const out = ws.rows<K - 1>().data();  // room for n + 2 rows (reserveSubproblems)
@@ -291,7 +287,8 @@ bool seidel(Row<K> *rows, int n, const double *c, const Box<K> &box, double eps,
         if (i > 0)
         {
             const Row<K> moved = rows[i];
-            std::memmove(static_cast<void *>(rows + 1), static_cast<const void *>(rows), sizeof(Row<K>) * std::size_t(i));
+            std::memmove(static_cast<void *>(rows + 1), static_cast<const void *>(rows),
+                         sizeof(Row<K>) * std::size_t(i));
             rows[0] = moved;
         }
     }
@@ -321,8 +318,8 @@ template bool solveRows<4>(Workspace &, int, const double *, const double *, con
 namespace
 {
 using small_lp::Row;
-using small_lp::Workspace;
 using small_lp::solveRows;
+using small_lp::Workspace;
 
 // Sorts (key, index) pairs: insertion sort for the few dozen rows of a typical problem, which
 // beats std::sort's setup there; the order is the same (pairs are distinct).
@@ -429,9 +426,9 @@ LpSolution<D> solveSmallLp(LpWorkspace &workspace, const std::vector<Halfspace<D
 }
 
 #define HYBRIDCD_INSTANTIATE_SMALL_LP(D)                                                                               \
-    template LpSolution<D> solveSmallLp<D>(LpWorkspace &, const std::vector<Halfspace<D>> &,                         \
+    template LpSolution<D> solveSmallLp<D>(LpWorkspace &, const std::vector<Halfspace<D>> &,                           \
                                            const Eigen::Matrix<double, D, 1> &, const Eigen::Matrix<double, D, 1> &,   \
-                                           const Eigen::Matrix<double, D, 1> &, double,                                 \
+                                           const Eigen::Matrix<double, D, 1> &, double,                                \
                                            const Eigen::Matrix<double, D, 1> *, std::uint64_t);
 HYBRIDCD_INSTANTIATE_SMALL_LP(1)
 HYBRIDCD_INSTANTIATE_SMALL_LP(2)

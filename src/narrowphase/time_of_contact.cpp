@@ -32,8 +32,8 @@ TimeOfContact translationalTimeOfContact(const ConvexPiece &moving, const Vec3 &
     for (const Vec3 &v : fixed.vertices)
         scale = std::max(scale, (v - center).cwiseAbs().maxCoeff());
     for (const Vec3 &v : moving.vertices)
-        scale = std::max({scale, (v - center).cwiseAbs().maxCoeff(),
-                          (v + displacement - center).cwiseAbs().maxCoeff()});
+        scale =
+            std::max({scale, (v - center).cwiseAbs().maxCoeff(), (v + displacement - center).cwiseAbs().maxCoeff()});
     if (!(scale > 0.0))  // both pieces the same single point, not moving
         scale = std::max(1.0, std::max(moving.magnitude(), fixed.magnitude()));
 

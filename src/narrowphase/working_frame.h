@@ -37,7 +37,7 @@ inline Frame workingFrame(const ConvexPiece &a, const ConvexPiece &b, double *to
         }
     f.scale = extent.maxCoeff();
     const double largest = magnitude.maxCoeff();  // max(a.magnitude(), b.magnitude())
-    if (!(f.scale > 0.0))  // both pieces one and the same point
+    if (!(f.scale > 0.0))                         // both pieces one and the same point
         f.scale = std::max(1.0, largest);
     if (tolerance)
         *tolerance = kNarrowPhaseRelativeTolerance * largest + 1e-300;

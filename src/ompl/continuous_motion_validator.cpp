@@ -19,7 +19,7 @@ double rotationAngle(const Mat3 &r1, const Mat3 &r2)
     return std::acos(std::clamp(c, -1.0, 1.0));
 }
 
-constexpr std::size_t kMaxQueries = 100000;  // beyond this a motion is refused rather than certified
+constexpr std::size_t kMaxQueries = 100000;          // beyond this a motion is refused rather than certified
 constexpr std::size_t kMaxRefinementQueries = 5000;  // bracketing a known contact stops here
 
 // Reverses the low `bits` bits of i.
@@ -207,8 +207,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         // quadratically in time) is where certification stalls, and elsewhere the bracket closes on
         // the contact itself.
         const bool nearContact = needed < minimumClearance_;
-        if (nearContact && mid - certified <= tolerance &&
-            (contactAt > 1.0 || iv.b - iv.a < 1e-3 * tolerance))
+        if (nearContact && mid - certified <= tolerance && (contactAt > 1.0 || iv.b - iv.a < 1e-3 * tolerance))
         {
             nearContactAt = mid;
             break;

@@ -79,7 +79,8 @@ void configPoseToState(const ConfigPose &pose, bool planar, ob::State *state)
     }
     auto *s = state->as<ob::SE3StateSpace::StateType>();
     s->setXYZ(pose.x, pose.y, pose.z);
-    const RigidTransform r = RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(pose.axisX, pose.axisY, pose.axisZ), pose.theta);
+    const RigidTransform r =
+        RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(pose.axisX, pose.axisY, pose.axisZ), pose.theta);
     const Eigen::Quaterniond q(r.rotation);
     s->rotation().w = q.w();
     s->rotation().x = q.x();
@@ -88,10 +89,12 @@ void configPoseToState(const ConfigPose &pose, bool planar, ob::State *state)
 }
 
 std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, const LoadedProblem &problem,
-                                                     std::shared_ptr<const CollisionChecker> checker, MotionCheck motion)
+                                                     std::shared_ptr<const CollisionChecker> checker,
+                                                     MotionCheck motion)
 {
     const ob::SpaceInformationPtr &si = planning.setup->getSpaceInformation();
-    planning.validity = std::make_shared<StateValidityChecker>(si, std::move(checker), problem.scene, problem.config.planar);
+    planning.validity =
+        std::make_shared<StateValidityChecker>(si, std::move(checker), problem.scene, problem.config.planar);
     si->setStateValidityChecker(planning.validity);
     if (motion == MotionCheck::Continuous)
     {

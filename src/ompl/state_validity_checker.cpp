@@ -14,7 +14,10 @@ namespace hcd
 StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr &si,
                                            std::shared_ptr<const CollisionChecker> checker, CollisionScene scene,
                                            bool planar)
-    : ompl::base::StateValidityChecker(si), checker_(std::move(checker)), scene_(std::move(scene)), planar_(planar)
+    : ompl::base::StateValidityChecker(si),
+      checker_(std::move(checker)),
+      scene_(std::move(scene)),
+      planar_(planar)
 {
     specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
     specs_.hasValidDirectionComputation = false;

@@ -52,22 +52,24 @@
 // trips an assertion inside Debian's libompl (LPAstarOnGraph::removeEdge) on ordinary problems with
 // obstacles, which aborts the whole process.
 
-namespace hcd {
-namespace {
+namespace hcd
+{
+namespace
+{
 
 namespace og = ompl::geometric;
 
 using Factory = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)>;
 
 template <typename T>
-Factory make() {
-    return [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
-        return std::make_shared<T>(si);
-    };
+Factory make()
+{
+    return [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr { return std::make_shared<T>(si); };
 }
 
 // A std::map keeps the names sorted, so plannerNames() needs no extra sort.
-const std::map<std::string, Factory> &catalogue() {
+const std::map<std::string, Factory> &catalogue()
+{
     static const std::map<std::string, Factory> table = {
         {"abitstar", make<og::ABITstar>()},
         {"aitstar", make<og::AITstar>()},
@@ -117,23 +119,29 @@ const std::map<std::string, Factory> &catalogue() {
     return table;
 }
 
-std::string toLower(std::string s) {
+std::string toLower(std::string s)
+{
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return s;
 }
 
 // The .cfg reader may hand over "rrt " or " rrt"; stray blanks should not make a known type unknown.
-std::string trim(const std::string &s) {
+std::string trim(const std::string &s)
+{
     const auto first = s.find_first_not_of(" \t\r\n");
-    if (first == std::string::npos) return {};
+    if (first == std::string::npos)
+        return {};
     const auto last = s.find_last_not_of(" \t\r\n");
     return s.substr(first, last - first + 1);
 }
 
-std::string join(const std::vector<std::string> &items) {
+std::string join(const std::vector<std::string> &items)
+{
     std::string out;
-    for (const auto &item : items) {
-        if (!out.empty()) out += ", ";
+    for (const auto &item : items)
+    {
+        if (!out.empty())
+            out += ", ";
         out += item;
     }
     return out;
@@ -141,41 +149,53 @@ std::string join(const std::vector<std::string> &items) {
 
 }  // namespace
 
-std::vector<std::string> plannerNames() {
+std::vector<std::string> plannerNames()
+{
     std::vector<std::string> names;
     names.reserve(catalogue().size());
-    for (const auto &entry : catalogue()) names.push_back(entry.first);
+    for (const auto &entry : catalogue())
+        names.push_back(entry.first);
     return names;
 }
 
-ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si) {
+ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si)
+{
     const std::string type = toLower(trim(request.type));
     const auto it = catalogue().find(type);
     if (it == catalogue().end())
-        throw std::invalid_argument("unknown planner type '" + request.type + "'; valid types: " + join(plannerNames()));
+        throw std::invalid_argument("unknown planner type '" + request.type +
+                                    "'; valid types: " + join(plannerNames()));
 
     ompl::base::PlannerPtr planner = it->second(si);
-    if (!request.displayName.empty()) planner->setName(request.displayName);
+    if (!request.displayName.empty())
+        planner->setName(request.displayName);
 
-    for (const auto &[key, value] : request.parameters) {
+    for (const auto &[key, value] : request.parameters)
+    {
         // Check first so an unknown name gets a helpful list instead of OMPL's bare log line.
-        if (!planner->params().hasParam(key)) {
+        if (!planner->params().hasParam(key))
+        {
             std::vector<std::string> known;
             planner->params().getParamNames(known);
             throw std::invalid_argument("planner '" + type + "' (" + planner->getName() + ") has no parameter '" + key +
                                         "'; valid parameters: " + (known.empty() ? "(none)" : join(known)));
         }
-        const std::string rejected = "planner '" + type + "': invalid value '" + value + "' for parameter '" + key + "'";
+        const std::string rejected =
+            "planner '" + type + "': invalid value '" + value + "' for parameter '" + key + "'";
         bool accepted = false;
-        try {
+        try
+        {
             accepted = planner->params().setParam(key, value);
-        } catch (const std::exception &e) {
+        }
+        catch (const std::exception &e)
+        {
             // OMPL 1.5 only turns std::invalid_argument into "false"; a malformed real
             // ("Failed converting string to real number"), an out-of-range integer or a
             // setter's own ompl::Exception escapes as some other exception.
             throw std::invalid_argument(rejected + ": " + e.what());
         }
-        if (!accepted) throw std::invalid_argument(rejected);
+        if (!accepted)
+            throw std::invalid_argument(rejected);
     }
     return planner;
 }

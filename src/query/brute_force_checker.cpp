@@ -76,7 +76,7 @@ bool BruteForceChecker::doCollides(const RigidTransform &worldFromRobot, QueryCo
 }
 
 std::vector<ContactPair> BruteForceChecker::doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
-                                                      QueryContext &) const
+                                                       QueryContext &) const
 {
     std::vector<ContactPair> found;
     if (!worldFromRobot.isFinite())
@@ -89,8 +89,9 @@ std::vector<ContactPair> BruteForceChecker::doContacts(const RigidTransform &wor
         const Vec3 a2 = worldFromRobot.apply(robot.corner(i, 2));
         for (std::uint32_t j = 0; j < env.triangleCount() && found.size() < limit; ++j)
             if (trianglesIntersect(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2)))
-                found.push_back({ContactPair::Kind::Triangles, robotFaces_.source(i), environmentFaces_.source(j),
-                                 triangleContactPoint(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2))});
+                found.push_back(
+                    {ContactPair::Kind::Triangles, robotFaces_.source(i), environmentFaces_.source(j),
+                     triangleContactPoint(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2))});
     }
     return found;
 }

@@ -14,8 +14,9 @@ template <class Volume>
 CheckerEntry treeEntry(const char *name, const char *description)
 {
     const std::string n = name;
-    return {n, description,
-            [n](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<VolumeTreeChecker<Volume>>(s, n); }};
+    return {n, description, [n](const CollisionScene &s, const CheckerOptions &) {
+                return std::make_unique<VolumeTreeChecker<Volume>>(s, n);
+            }};
 }
 
 std::string joined(const std::vector<std::string> &names)
@@ -33,7 +34,8 @@ CheckerCatalogue CheckerCatalogue::builtIn()
     c.add(treeEntry<Obb>("obb", "OBB trees, exact triangle tests at the leaves (the default)"));
     c.add(treeEntry<Ellipsoid>("ellipsoid", "bounding-ellipsoid trees, exact triangle tests at the leaves"));
     c.add(treeEntry<HybridVolume<false>>("hybrid", "OBB and ellipsoid per node, the box tested first"));
-    c.add(treeEntry<HybridVolume<true>>("hybrid-ellipsoid-first", "OBB and ellipsoid per node, the ellipsoid tested first"));
+    c.add(treeEntry<HybridVolume<true>>("hybrid-ellipsoid-first",
+                                        "OBB and ellipsoid per node, the ellipsoid tested first"));
     c.add({"bruteforce", "every triangle pair, no hierarchy (the slow reference)",
            [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<BruteForceChecker>(s); }});
     c.add({"lp", "OBB trees over convex pieces tested by linear programming; exact, or approximate with a tolerance",

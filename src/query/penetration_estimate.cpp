@@ -11,13 +11,15 @@ namespace hcd
 namespace
 {
 // A contact's two triangles as flat convex pieces in world coordinates (robot placed by `pose`).
-std::pair<ConvexPiece, ConvexPiece> piecesOf(const ContactPair &c, const CollisionScene &scene, const RigidTransform &pose)
+std::pair<ConvexPiece, ConvexPiece> piecesOf(const ContactPair &c, const CollisionScene &scene,
+                                             const RigidTransform &pose)
 {
     const TriangleMesh &robot = *scene.robot, &env = *scene.environment;
-    return {ConvexPiece::hullOf({pose.apply(robot.corner(c.robotElement, 0)), pose.apply(robot.corner(c.robotElement, 1)),
-                                 pose.apply(robot.corner(c.robotElement, 2))}),
-            ConvexPiece::hullOf({env.corner(c.environmentElement, 0), env.corner(c.environmentElement, 1),
-                                 env.corner(c.environmentElement, 2)})};
+    return {
+        ConvexPiece::hullOf({pose.apply(robot.corner(c.robotElement, 0)), pose.apply(robot.corner(c.robotElement, 1)),
+                             pose.apply(robot.corner(c.robotElement, 2))}),
+        ConvexPiece::hullOf({env.corner(c.environmentElement, 0), env.corner(c.environmentElement, 1),
+                             env.corner(c.environmentElement, 2)})};
 }
 
 // The current intersecting triangle pairs (containment records left out).
@@ -32,7 +34,8 @@ std::vector<ContactPair> triangleContacts(const CollisionChecker &checker, const
 }
 
 // The deepest pairwise penetration among `contacts` (depth 0 when there are none).
-Penetration deepestPair(const std::vector<ContactPair> &contacts, const CollisionScene &scene, const RigidTransform &pose)
+Penetration deepestPair(const std::vector<ContactPair> &contacts, const CollisionScene &scene,
+                        const RigidTransform &pose)
 {
     Penetration deepest;
     for (const ContactPair &c : contacts)
@@ -51,8 +54,8 @@ Penetration deepestPair(const std::vector<ContactPair> &contacts, const Collisio
 // round each; this clears them in one step. Pairs that would need more than `limit` (a robot
 // triangle sliding along a long wall in that direction) are left to later rounds: the point is a
 // free pose nearby, not one far away.
-double clearingDistance(const std::vector<ContactPair> &contacts, const CollisionScene &scene, const RigidTransform &pose,
-                        const Vec3 &direction, double limit)
+double clearingDistance(const std::vector<ContactPair> &contacts, const CollisionScene &scene,
+                        const RigidTransform &pose, const Vec3 &direction, double limit)
 {
     double distance = 0.0;
     for (const ContactPair &c : contacts)

@@ -41,7 +41,7 @@ bool SolidSemanticsChecker::contained(const RigidTransform &worldFromRobot) cons
 }
 
 std::vector<ContactPair> SolidSemanticsChecker::doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
-                                                          QueryContext &context) const
+                                                           QueryContext &context) const
 {
     std::vector<ContactPair> found = surface_->contacts(worldFromRobot, limit, context);
     if (!found.empty() || limit == 0 || !worldFromRobot.isFinite())
@@ -60,7 +60,8 @@ std::vector<ContactPair> SolidSemanticsChecker::doContacts(const RigidTransform 
         {
             const int solid = robotSolids_.solidContaining(robotFromWorld.apply(environmentRepresentatives_[j]));
             if (solid >= 0)
-                return {{ContactPair::Kind::Containment, std::uint32_t(solid), std::uint32_t(j), environmentRepresentatives_[j]}};
+                return {{ContactPair::Kind::Containment, std::uint32_t(solid), std::uint32_t(j),
+                         environmentRepresentatives_[j]}};
         }
     }
     return found;

@@ -2,16 +2,16 @@
 #include "hybridcd/query/volume_tree_checker.h"
 
 #include "hybridcd/geometry/triangle_distance.h"
-#include "hybridcd/narrowphase/linear_program.h"
 #include "hybridcd/geometry/triangle_intersection.h"
+#include "hybridcd/narrowphase/linear_program.h"
 #include "hybridcd/query/leaf_decomposition.h"
 #include "hybridcd/query/placed_robot.h"
 #include "hybridcd/query/stamped_slots.h"
 #include "hybridcd/query/traversal_stack.h"
 
 #include <algorithm>
-#include <tuple>
 #include <cmath>
+#include <tuple>
 
 namespace hcd
 {
@@ -24,7 +24,9 @@ class PlacedPieces
 {
 public:
     PlacedPieces(const RigidTransform &pose, QueryContext &context)
-        : s_(context.scratch<Scratch>()), query_(++s_.query), pose_(pose)
+        : s_(context.scratch<Scratch>()),
+          query_(++s_.query),
+          pose_(pose)
     {
     }
 
@@ -65,7 +67,8 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
         robotNodeReach_.push_back((VolumeTraits<Volume>::center(node.volume).norm() + node.radius) * (1.0 + 1e-12));
     for (std::size_t t = 0; t < robot.triangleCount(); ++t)
         robotTriangleReach_.push_back(
-            std::max({robot.corner(t, 0).norm(), robot.corner(t, 1).norm(), robot.corner(t, 2).norm()}) * (1.0 + 1e-12));
+            std::max({robot.corner(t, 0).norm(), robot.corner(t, 1).norm(), robot.corner(t, 2).norm()}) *
+            (1.0 + 1e-12));
     if (pieceStage_)
     {
         robotPieces_ = decomposeLeaves(robotTree_);
@@ -111,9 +114,8 @@ bool VolumeTreeChecker<Volume>::doWithinSweptDistance(const RigidTransform &worl
 }
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, Slack slack,
-                                              QueryContext &context, std::vector<ContactPair> *found,
-                                              std::size_t limit) const
+bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryContext &context,
+                                              std::vector<ContactPair> *found, std::size_t limit) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -210,8 +212,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             continue;
         }
         // Split the node whose box is larger (by its largest extent); leaves cannot be split.
-        const bool splitRobot =
-            en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
+        const bool splitRobot = en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
         if (splitRobot)
         {
             stack.push({std::uint32_t(rn.firstChild + 1), pair.environment});
@@ -267,8 +268,9 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
         ++boxTests;
         const Volume &robotVolume = placed.volume(p.robot);
         const Volume &envVolume = eNodes[p.environment].volume;
-        const double sphereGap = (VolumeTraits<Volume>::center(robotVolume) - VolumeTraits<Volume>::center(envVolume)).norm() -
-                                 rNodes[p.robot].radius - eNodes[p.environment].radius - tolerance;
+        const double sphereGap =
+            (VolumeTraits<Volume>::center(robotVolume) - VolumeTraits<Volume>::center(envVolume)).norm() -
+            rNodes[p.robot].radius - eNodes[p.environment].radius - tolerance;
         return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
     // Each pair's bound is computed once, when it is pushed, and compared again with the best
@@ -298,8 +300,7 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
             }
             continue;
         }
-        const bool splitRobot =
-            en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
+        const bool splitRobot = en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
         NodePair first = splitRobot ? NodePair{std::uint32_t(rn.firstChild), pair.environment}
                                     : NodePair{pair.robot, std::uint32_t(en.firstChild)};
         NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
@@ -347,7 +348,8 @@ std::pair<double, std::size_t> meanVolumeRatio(const VolumeTree<Volume> &tree)
 }
 
 template <class Volume>
-void writeLevel(const VolumeTree<Volume> &tree, int level, const char *group, std::ostream &obj, std::size_t &vertexBase)
+void writeLevel(const VolumeTree<Volume> &tree, int level, const char *group, std::ostream &obj,
+                std::size_t &vertexBase)
 {
     ExportMesh mesh;
     std::vector<std::pair<std::uint32_t, int>> stack{{0, 0}};
@@ -391,19 +393,21 @@ template <class Volume>
 std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies(bool withVolumeRatios) const
 {
     const std::string kind = VolumeTraits<Volume>::kName;
-    std::vector<HierarchyReport> reports = {{"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
-             robotTree_.memoryBytes()},
-            {"environment " + kind + " tree", environmentTree_.nodes().size(), environmentTree_.depth(),
-             environmentTree_.buildSeconds(), environmentTree_.memoryBytes() +
-                                                  environmentTriangleBounds_.capacity() * sizeof(TriangleBounds)}};
+    std::vector<HierarchyReport> reports = {
+        {"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
+         robotTree_.memoryBytes()},
+        {"environment " + kind + " tree", environmentTree_.nodes().size(), environmentTree_.depth(),
+         environmentTree_.buildSeconds(),
+         environmentTree_.memoryBytes() + environmentTriangleBounds_.capacity() * sizeof(TriangleBounds)}};
     if (withVolumeRatios)
     {
         std::tie(reports[0].meanVolumeRatio, reports[0].ratioNodes) = meanVolumeRatio(robotTree_);
         std::tie(reports[1].meanVolumeRatio, reports[1].ratioNodes) = meanVolumeRatio(environmentTree_);
     }
     if (pieceStage_)
-        for (const auto &[label, d] : {std::pair<const char *, const ConvexDecomposition *>{"robot convex pieces", &robotPieces_},
-                                      {"environment convex pieces", &environmentPieces_}})
+        for (const auto &[label, d] :
+             {std::pair<const char *, const ConvexDecomposition *>{"robot convex pieces", &robotPieces_},
+              {"environment convex pieces", &environmentPieces_}})
         {
             std::size_t bytes = 0;
             for (const ConvexPiece &p : d->pieces)

@@ -24,7 +24,10 @@ using namespace hcd;
 
 namespace
 {
-double uniform(test::TestRandom &rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+double uniform(test::TestRandom &rng, double lo, double hi)
+{
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
 
 double logUniform(test::TestRandom &rng, double lo, double hi)
 {
@@ -51,7 +54,10 @@ Vec3 sortedDescending(Vec3 v)
     return v;
 }
 
-double relativeShapeError(const Mat3 &fitted, const Mat3 &expected) { return (fitted - expected).norm() / expected.norm(); }
+double relativeShapeError(const Mat3 &fitted, const Mat3 &expected)
+{
+    return (fitted - expected).norm() / expected.norm();
+}
 
 // ---------------------------------------------------------------------------------------------------
 // Minimum-volume fit
@@ -140,7 +146,8 @@ TEST(MinimumVolumeEllipsoid, EnclosesEveryPointExactlyOnAllKindsOfSets)
                 std::vector<Vec3> points;
                 for (const Vec3 &p : base)
                     points.push_back(scale * p + offset);
-                const std::string label = name + " scale " + std::to_string(scale) + " offset " + std::to_string(offset.x());
+                const std::string label =
+                    name + " scale " + std::to_string(scale) + " offset " + std::to_string(offset.x());
                 for (const bool hull : {true, false})
                 {
                     MveeOptions options;
@@ -184,9 +191,9 @@ TEST(MinimumVolumeEllipsoid, RecoversAKnownEllipsoidFromPointsOnItsSurface)
     test::TestRandom rng(12);
     for (int trial = 0; trial < 3; ++trial)
     {
-        const Ellipsoid truth =
-            Ellipsoid::fromAxes(Vec3(uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)), test::randomRotation(rng),
-                                Vec3(logUniform(rng, 0.3, 3), logUniform(rng, 0.3, 3), logUniform(rng, 0.3, 3)));
+        const Ellipsoid truth = Ellipsoid::fromAxes(
+            Vec3(uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)), test::randomRotation(rng),
+            Vec3(logUniform(rng, 0.3, 3), logUniform(rng, 0.3, 3), logUniform(rng, 0.3, 3)));
         std::vector<Vec3> points;
         for (int i = 0; i < 4000; ++i)
             points.push_back(truth.center + truth.axes * truth.semiAxes.cwiseProduct(unitVector(rng)));
@@ -215,10 +222,12 @@ TEST(MinimumVolumeEllipsoid, MatchesTheAnalyticAnswerForBoxCornersAndARegularSim
         const Vec3 c(5, -3, 2);
         std::vector<Vec3> corners;
         for (int i = 0; i < 8; ++i)
-            corners.push_back(c + r * Vec3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(), i & 4 ? half.z() : -half.z()));
+            corners.push_back(
+                c + r * Vec3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(), i & 4 ? half.z() : -half.z()));
         if (withInterior)  // interior points must change nothing (and are dropped by the hull)
             for (int i = 0; i < 1000; ++i)
-                corners.push_back(c + r * half.cwiseProduct(Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1))));
+                corners.push_back(
+                    c + r * half.cwiseProduct(Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1))));
         const MveeResult box = fitMinimumVolumeEllipsoid(corners, options);
         expectValidFit(corners, box, "box");
         const Ellipsoid expected = Ellipsoid::fromAxes(c, r, std::sqrt(3.0) * half);
@@ -254,7 +263,9 @@ TEST(MinimumVolumeEllipsoid, IsCertifiedWithinTheStatedTolerance)
         std::vector<Vec3> points;
         const Mat3 stretch = test::randomRotation(rng) * Vec3(2.0, 1.0, 0.3).asDiagonal();
         for (int i = 0; i < 400; ++i)
-            points.push_back(stretch * (trial % 2 ? gaussian(rng) : Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1))));
+            points.push_back(stretch * (trial % 2
+                                            ? gaussian(rng)
+                                            : Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1))));
         // The reference: all points, no elimination, a far tighter tolerance.
         MveeOptions reference;
         reference.tolerance = 1e-10;
@@ -315,8 +326,8 @@ TEST(MinimumVolumeEllipsoid, CardinalityReductionGivesTheSameEllipsoidAndRemoves
         EXPECT_LT((b.ellipsoid.center - a.ellipsoid.center).norm(), 1e-3 * a.ellipsoid.boundingRadius());
         EXPECT_LT((c.ellipsoid.center - a.ellipsoid.center).norm(), 1e-3 * a.ellipsoid.boundingRadius());
         std::cout << "[ reduction ] " << points.size() << " points: full " << a.iterations << " iterations; reduced "
-                  << b.iterations << " iterations, " << b.removed << " removed; hull " << c.candidates << " candidates, "
-                  << c.removed << " removed, " << c.iterations << " iterations\n";
+                  << b.iterations << " iterations, " << b.removed << " removed; hull " << c.candidates
+                  << " candidates, " << c.removed << " removed, " << c.iterations << " iterations\n";
     }
     {
         // A large cloud: elimination must do real work, and quickly.
@@ -357,8 +368,9 @@ TEST(Ellipsoid, PrincipalAndShapeFormsAgreeAndTransform)
     test::TestRandom rng(16);
     for (int trial = 0; trial < 100; ++trial)
     {
-        const Ellipsoid e = Ellipsoid::fromAxes(gaussian(rng), test::randomRotation(rng),
-                                                Vec3(logUniform(rng, 0.1, 3), logUniform(rng, 0.1, 3), logUniform(rng, 0.1, 3)));
+        const Ellipsoid e =
+            Ellipsoid::fromAxes(gaussian(rng), test::randomRotation(rng),
+                                Vec3(logUniform(rng, 0.1, 3), logUniform(rng, 0.1, 3), logUniform(rng, 0.1, 3)));
         const Ellipsoid f = Ellipsoid::fromShape(e.center, e.shape);
         EXPECT_TRUE(sortedDescending(f.semiAxes).isApprox(sortedDescending(e.semiAxes), 1e-12));
         EXPECT_LT((e.inverseShape() * e.shape - Mat3::Identity()).norm(), 1e-10);
@@ -434,7 +446,9 @@ FormMinimum minimiseFormOver(const Ellipsoid &a, const Ellipsoid &b)
         const Eigen::SelfAdjointEigenSolver<Mat3> solver(h.transpose() * h);
         const Vec3 lambda = solver.eigenvalues().cwiseMax(0.0);
         const Vec3 beta = solver.eigenvectors().transpose() * (h.transpose() * g);
-        auto zOf = [&](double mu) { return Vec3(-(solver.eigenvectors() * beta.cwiseQuotient((lambda.array() + mu).matrix()))); };
+        auto zOf = [&](double mu) {
+            return Vec3(-(solver.eigenvectors() * beta.cwiseQuotient((lambda.array() + mu).matrix())));
+        };
         double lo = 0.0, hi = beta.norm();
         for (int iteration = 0; iteration < 200 && hi > lo; ++iteration)
         {
@@ -531,7 +545,8 @@ double referenceScalingGap(const Ellipsoid &a, const Ellipsoid &b)
         const Vec3 n = w.normalized();
         return n.dot(b.center - a.center) / (supportReach(a, n) + supportReach(b, n)) - 1.0;
     };
-    const std::vector<Vec3> starts{minimiseFormOver(a, b).normal, -minimiseFormOver(b, a).normal, gridContactNormal(a, b)};
+    const std::vector<Vec3> starts{minimiseFormOver(a, b).normal, -minimiseFormOver(b, a).normal,
+                                   gridContactNormal(a, b)};
     for (const Vec3 &start : starts)
     {
         data.best = std::max(data.best, margin(a, b, start));
@@ -546,7 +561,9 @@ double referenceScalingGap(const Ellipsoid &a, const Ellipsoid &b)
                 if (!(w.norm() > 0.0))
                     return -1e300;
                 const Vec3 n = w.normalized();
-                const double value = n.dot(data.b->center - data.a->center) / (supportReach(*data.a, n) + supportReach(*data.b, n)) - 1.0;
+                const double value =
+                    n.dot(data.b->center - data.a->center) / (supportReach(*data.a, n) + supportReach(*data.b, n)) -
+                    1.0;
                 data.best = std::max(data.best, value);
                 return value;
             },
@@ -566,7 +583,10 @@ double referenceScalingGap(const Ellipsoid &a, const Ellipsoid &b)
     return data.best;
 }
 
-bool witnessInBoth(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &x) { return formValue(a, x) <= 1.0 && formValue(b, x) <= 1.0; }
+bool witnessInBoth(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &x)
+{
+    return formValue(a, x) <= 1.0 && formValue(b, x) <= 1.0;
+}
 
 /// The reference verdict: overlap needs a common point, disjoint a separating plane.
 Verdict referenceVerdict(const Ellipsoid &a, const Ellipsoid &b, test::TestRandom &rng)
@@ -575,7 +595,8 @@ Verdict referenceVerdict(const Ellipsoid &a, const Ellipsoid &b, test::TestRando
     // Witnesses: the minimisers, pulled slightly towards the centre of the ellipsoid they lie in.
     for (const double t : {1.0, 1.0 - 1e-13, 1.0 - 1e-11, 1.0 - 1e-9, 1.0 - 1e-7})
     {
-        if (witnessInBoth(a, b, b.center + t * (ab.point - b.center)) || witnessInBoth(a, b, a.center + t * (ba.point - a.center)))
+        if (witnessInBoth(a, b, b.center + t * (ab.point - b.center)) ||
+            witnessInBoth(a, b, a.center + t * (ba.point - a.center)))
             return Verdict::Overlap;
     }
     if (separates(a, b, ab.normal) || separates(a, b, -ba.normal) || separates(a, b, gridContactNormal(a, b)))
@@ -607,7 +628,10 @@ Ellipsoid randomShape(test::TestRandom &rng, const std::string &kind, const Vec3
     return Ellipsoid::fromAxes(center, test::randomRotation(rng), semi);
 }
 
-Ellipsoid scaledAboutCenter(const Ellipsoid &e, double scale) { return Ellipsoid::fromAxes(e.center, e.axes, e.semiAxes * scale); }
+Ellipsoid scaledAboutCenter(const Ellipsoid &e, double scale)
+{
+    return Ellipsoid::fromAxes(e.center, e.axes, e.semiAxes * scale);
+}
 
 struct Tally
 {
@@ -668,7 +692,8 @@ TEST(EllipsoidOverlap, NeverReportsDisjointForOverlappingPairs)
         const std::string kindA = kinds[std::size_t(i % 3)], kindB = kinds[std::size_t((i / 3) % 3)];
         const double spread = (kindA == "generic" && kindB == "generic") ? 3.0 : 1.5;
         const Ellipsoid a = randomShape(rng, kindA, Vec3::Zero());
-        const Ellipsoid b = randomShape(rng, kindB, spread * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)));
+        const Ellipsoid b =
+            randomShape(rng, kindB, spread * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)));
         check("random " + kindA + "/" + kindB, a, b);
     }
     // Nested pairs: b inside a, possibly touching a's surface from inside, in both orders.
@@ -678,8 +703,9 @@ TEST(EllipsoidOverlap, NeverReportsDisjointForOverlappingPairs)
         const double shrink = (i % 4 == 0) ? 1.0 - 1e-9 : uniform(rng, 0.05, 0.9);
         const Vec3 offset = a.axes * a.semiAxes.cwiseProduct(unitVector(rng)) * (1.0 - shrink) * uniform(rng, 0.0, 1.0);
         const Ellipsoid b = Ellipsoid::fromAxes(a.center + offset, a.axes, a.semiAxes * shrink);
-        const Ellipsoid tiny = Ellipsoid::fromAxes(a.center + 0.999 * (a.axes * a.semiAxes.cwiseProduct(unitVector(rng))),
-                                                   test::randomRotation(rng), Vec3::Constant(1e-4 * a.semiAxes.minCoeff()));
+        const Ellipsoid tiny =
+            Ellipsoid::fromAxes(a.center + 0.999 * (a.axes * a.semiAxes.cwiseProduct(unitVector(rng))),
+                                test::randomRotation(rng), Vec3::Constant(1e-4 * a.semiAxes.minCoeff()));
         check("nested", i % 2 ? a : b, i % 2 ? b : a);
         check("nested tiny", a, tiny);
     }
@@ -702,8 +728,8 @@ TEST(EllipsoidOverlap, NeverReportsDisjointForOverlappingPairs)
         const std::string kindA = kinds[std::size_t(i % 3)], kindB = kinds[std::size_t((i / 3) % 3)];
         const Ellipsoid a = randomShape(rng, kindA, Vec3::Zero());
         Ellipsoid b = randomShape(rng, kindB, Vec3::Zero());
-        b = Ellipsoid::fromAxes((a.boundingRadius() + b.boundingRadius()) * uniform(rng, 0.3, 1.2) * unitVector(rng), b.axes,
-                                b.semiAxes);
+        b = Ellipsoid::fromAxes((a.boundingRadius() + b.boundingRadius()) * uniform(rng, 0.3, 1.2) * unitVector(rng),
+                                b.axes, b.semiAxes);
         if (formValue(a, b.center) <= 1.0 || formValue(b, a.center) <= 1.0)
             continue;
         auto touches = [&](double scale) { return minimiseFormOver(a, scaledAboutCenter(b, scale)).value <= 1.0; };
@@ -718,7 +744,8 @@ TEST(EllipsoidOverlap, NeverReportsDisjointForOverlappingPairs)
             (touches(mid) ? hi : lo) = mid;
         }
         for (const double offset : offsets)
-            check("touching " + kindA + "/" + kindB + (offset < 0 ? " apart" : " into"), a, scaledAboutCenter(b, hi * (1.0 + offset)));
+            check("touching " + kindA + "/" + kindB + (offset < 0 ? " apart" : " into"), a,
+                  scaledAboutCenter(b, hi * (1.0 + offset)));
     }
 
     Tally all;
@@ -731,16 +758,18 @@ TEST(EllipsoidOverlap, NeverReportsDisjointForOverlappingPairs)
         all.falseDisjoint += t.falseDisjoint;
         all.conservativeOverlap += t.conservativeOverlap;
         all.truePositives += t.truePositives;
-        std::cout << "[ overlap ] " << group << ": " << t.pairs << " pairs, reference " << t.referenceOverlap << " overlap / "
-                  << t.referenceDisjoint << " disjoint / " << t.unknown << " undecided; false disjoint " << t.falseDisjoint
-                  << ", overlap said for separated pairs " << t.conservativeOverlap << "\n";
+        std::cout << "[ overlap ] " << group << ": " << t.pairs << " pairs, reference " << t.referenceOverlap
+                  << " overlap / " << t.referenceDisjoint << " disjoint / " << t.unknown
+                  << " undecided; false disjoint " << t.falseDisjoint << ", overlap said for separated pairs "
+                  << t.conservativeOverlap << "\n";
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "[ overlap ] total " << all.pairs << " pairs (" << all.referenceOverlap << " overlapping, "
               << all.referenceDisjoint << " separated, " << all.unknown << " undecided and skipped); false disjoint "
-              << all.falseDisjoint << "; said overlap for a separated pair " << all.conservativeOverlap << "; " << seconds
-              << " s\n";
-    std::cout << "[ overlap ] largest relative separation among separated pairs said to overlap: " << worstConservativeGap << "\n";
+              << all.falseDisjoint << "; said overlap for a separated pair " << all.conservativeOverlap << "; "
+              << seconds << " s\n";
+    std::cout << "[ overlap ] largest relative separation among separated pairs said to overlap: "
+              << worstConservativeGap << "\n";
     EXPECT_GE(all.pairs, 100000);
     EXPECT_EQ(all.falseDisjoint, 0);
     EXPECT_LT(double(all.unknown), 0.01 * double(all.pairs));
@@ -814,7 +843,8 @@ TEST(EllipsoidDistance, IsALowerBoundThatMatchesTheReference)
     // Balls: exact.
     for (int i = 0; i < 100; ++i)
     {
-        const Ellipsoid a = Ellipsoid::fromAxes(gaussian(rng), test::randomRotation(rng), Vec3::Constant(logUniform(rng, 0.1, 2)));
+        const Ellipsoid a =
+            Ellipsoid::fromAxes(gaussian(rng), test::randomRotation(rng), Vec3::Constant(logUniform(rng, 0.1, 2)));
         const Ellipsoid b = Ellipsoid::fromAxes(a.center + 5.0 * unitVector(rng), test::randomRotation(rng),
                                                 Vec3::Constant(logUniform(rng, 0.1, 2)));
         const double expected = (b.center - a.center).norm() - a.semiAxes[0] - b.semiAxes[0];
@@ -828,7 +858,8 @@ TEST(EllipsoidDistance, IsALowerBoundThatMatchesTheReference)
     for (int i = 0; i < 1500; ++i)
     {
         const Ellipsoid a = randomShape(rng, kinds[std::size_t(i % 3)], Vec3::Zero());
-        const Ellipsoid b = randomShape(rng, kinds[std::size_t((i / 3) % 3)], 4.0 * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)));
+        const Ellipsoid b = randomShape(rng, kinds[std::size_t((i / 3) % 3)],
+                                        4.0 * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)));
         const double distance = ellipsoidDistance(a, b);
         ASSERT_TRUE(std::isfinite(distance) && distance >= 0.0);
         if (ellipsoidsOverlap(a, b))

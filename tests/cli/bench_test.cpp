@@ -26,7 +26,8 @@ std::string summarize(const std::string &db)
 {
     const std::string py =
         "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); "
-        "rows=c.execute('select p.name, r.run_index from runs r join plannerConfigs p on r.plannerid=p.id').fetchall(); "
+        "rows=c.execute('select p.name, r.run_index from runs r join plannerConfigs p on "
+        "r.plannerid=p.id').fetchall(); "
         "d={}; [d.setdefault(n,[]).append(int(i)) for n,i in rows]; "
         "print(';'.join('%s|%d|%s'%(n,len(v),','.join(map(str,sorted(v)))) for n,v in sorted(d.items())))";
     return shell("python3 -c \"" + py + "\" " + db).output;
@@ -68,7 +69,8 @@ TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
     }
     const Output whole = shell(base + " --out " + dir + "/whole.log");
     ASSERT_EQ(whole.status, 0) << whole.output;
-    ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics shard0.log shard1.log shard2.log -d shards.db").status, 0);
+    ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics shard0.log shard1.log shard2.log -d shards.db").status,
+              0);
     ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics whole.log -d whole.db").status, 0);
     const std::string expected =
         "geometric_RRTConnect[bruteforce+ccd]|5|0,1,2,3,4;geometric_RRTConnect[obb+ccd]|5|0,1,2,3,4\n";

@@ -64,7 +64,8 @@ TEST(Cli, InspectDescribesMeshesAndHierarchies)
 {
     const CliRun r = run("inspect " + problem3d());
     ASSERT_EQ(r.status, 0) << r.output;
-    for (const char *field : {"triangles:", "vertices:", "closed (watertight): yes", "bounding box:", "OBB tree:", "nodes"})
+    for (const char *field :
+         {"triangles:", "vertices:", "closed (watertight): yes", "bounding box:", "OBB tree:", "nodes"})
         EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
 }
 
@@ -76,7 +77,8 @@ TEST(Cli, BadInputGivesClearErrorsAndNonZeroExit)
     };
     const std::string missingMesh = test::writeTempFile(
         "missing_mesh.cfg", "[problem]\nrobot = no_such_robot.obj\nstart.x=0\nstart.y=0\ngoal.x=1\ngoal.y=1\n");
-    const std::string malformed = test::writeTempFile("malformed.cfg", "[problem]\nrobot = r.obj\nthis is not a setting\n");
+    const std::string malformed =
+        test::writeTempFile("malformed.cfg", "[problem]\nrobot = r.obj\nthis is not a setting\n");
     const std::string nanPose = test::writeTempFile("nan.path", "0 0 0 0 0 0 1\n1 2 nan 0 0 0 1\n");
     const Case cases[] = {
         {"solve " + missingMesh, "missing_mesh.cfg:2: robot mesh"},
@@ -151,8 +153,8 @@ TEST(Cli, ClearanceAndCheckMotion)
     EXPECT_NE(timed.output.find("1 free, 1 colliding; mean "), std::string::npos) << timed.output;
     EXPECT_NE(timed.output.find(" ns per clearance"), std::string::npos) << timed.output;
     // A motion straight through the dividing wall below the window, and one through the window.
-    const std::string motions = test::writeTempFile(
-        "motions.txt", "-26 -10 12 0 0 0 1 26 -10 12 0 0 0 1\n-26 0 25 0 0 0 1 26 0 25 0 0 0 1\n");
+    const std::string motions =
+        test::writeTempFile("motions.txt", "-26 -10 12 0 0 0 1 26 -10 12 0 0 0 1\n-26 0 25 0 0 0 1 26 0 25 0 0 0 1\n");
     const CliRun motion = run("check-motion " + problem3d() + " --motions " + motions + " 2>/dev/null");
     ASSERT_EQ(motion.status, 0) << motion.output;
     std::istringstream lines(motion.output);
@@ -191,8 +193,8 @@ TEST(Cli, EveryCommandHasHelpWithItsOptionsAndExamples)
             const CliRun r = run(form);
             EXPECT_EQ(r.status, 0) << form << "\n" << r.output;
             std::vector<std::string> expected = options;
-            for (const char *common : {"--checker", "--surface-only", "--mode", "--tolerance", "--max-triangles",
-                                       "Examples:", "hybridcd " })
+            for (const char *common :
+                 {"--checker", "--surface-only", "--mode", "--tolerance", "--max-triangles", "Examples:", "hybridcd "})
                 expected.push_back(common);
             expected.push_back("hybridcd " + command + " ");
             for (const std::string &text : expected)
@@ -227,7 +229,8 @@ TEST(Cli, HelpListsEveryCheckerOfTheCatalogueWithItsDescription)
         const CliRun r = run(form);
         ASSERT_EQ(r.status, 0) << r.output;
         for (const CheckerEntry &e : catalogue.entries())
-            EXPECT_NE(r.output.find("  " + e.name + " "), std::string::npos) << form << ": " << e.name << "\n" << r.output;
+            EXPECT_NE(r.output.find("  " + e.name + " "), std::string::npos) << form << ": " << e.name << "\n"
+                                                                             << r.output;
         for (const CheckerEntry &e : catalogue.entries())
             EXPECT_NE(r.output.find(e.description), std::string::npos) << form << ": " << e.name << "\n" << r.output;
     }

@@ -140,8 +140,9 @@ std::string applySetup(const std::string &step, const fs::path &tmp)
     else if (p[0] == "binary")
     {
         // A PNG signature and header: NUL bytes and control characters, as any binary file has.
-        const unsigned char bytes[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
-                                       0, 0, 1, 0, 0, 0, 1, 0, 8, 6, 0, 0, 0, 0x5c, 0x72, 0xa8, 0x66};
+        const unsigned char bytes[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0,    0,    0,
+                                       13,   'I', 'H', 'D', 'R',  0,    0,    1,    0,    0,    0,
+                                       1,    0,   8,   6,   0,    0,    0,    0x5c, 0x72, 0xa8, 0x66};
         std::ofstream(target, std::ios::binary).write(reinterpret_cast<const char *>(bytes), sizeof bytes);
     }
     else if (p[0] == "sparse-stl")
@@ -192,8 +193,8 @@ TEST(HostileInput, EveryCorpusCaseThroughTheCommandLine)
             return replaceAll(text, "{omplapp}", omplapp);
         };
         const auto start = std::chrono::steady_clock::now();
-        const hcd::test::ShellResult r = hcd::test::runShell("cd '" + tmp.string() + "' && " + HYBRIDCD_CLI + " " +
-                                                             substitute(c.arguments));
+        const hcd::test::ShellResult r =
+            hcd::test::runShell("cd '" + tmp.string() + "' && " + HYBRIDCD_CLI + " " + substitute(c.arguments));
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
         EXPECT_EQ(r.status, c.status) << r.output;

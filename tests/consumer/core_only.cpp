@@ -17,7 +17,8 @@ int main(int argc, char **argv)
     const hcd::ConfigPose &s = problem.config.start;
     const hcd::RigidTransform start =
         problem.config.planar ? hcd::RigidTransform::fromPlanarPose(s.x, s.y, s.theta)
-                              : hcd::RigidTransform::fromAxisAngle(hcd::Vec3(s.x, s.y, s.z), hcd::Vec3(s.axisX, s.axisY, s.axisZ), s.theta);
+                              : hcd::RigidTransform::fromAxisAngle(hcd::Vec3(s.x, s.y, s.z),
+                                                                   hcd::Vec3(s.axisX, s.axisY, s.axisZ), s.theta);
     const bool hit = hcd::makeChecker("obb", problem.scene)->collides(start);
     std::cout << "start collides: " << hit << '\n';
     return hit ? 1 : 0;

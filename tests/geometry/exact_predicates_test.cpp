@@ -125,8 +125,8 @@ struct Tally
 
     ~Tally()
     {
-        std::cout << "[ category ] " << name << ": " << cases << " cases, " << zero << " exactly zero, "
-                  << mismatches << " mismatches" << std::endl;
+        std::cout << "[ category ] " << name << ": " << cases << " cases, " << zero << " exactly zero, " << mismatches
+                  << " mismatches" << std::endl;
         EXPECT_EQ(mismatches, 0) << name;
     }
 };

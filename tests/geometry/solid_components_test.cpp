@@ -198,15 +198,16 @@ std::size_t expectMatchesReference(const char *name, const TriangleMesh &mesh, c
         const bool expected = reference(p);
         inside += expected ? 1 : 0;
         if (query.insideAnySolid(p) != expected && ++mismatches <= 10)
-            ADD_FAILURE() << name << ": point (" << p.transpose() << ") should be " << (expected ? "inside" : "outside");
+            ADD_FAILURE() << name << ": point (" << p.transpose() << ") should be "
+                          << (expected ? "inside" : "outside");
     }
     EXPECT_EQ(mismatches, 0u) << name;
     return inside;
 }
 
 // Points on the closed surface of the box [lo, hi]: on faces, edges and vertices, exactly.
-std::size_t countOnBoxSurface(const Vec3 &lo, const Vec3 &hi, const std::vector<double> &specials, double a,
-                              double b, std::size_t n, std::uint64_t seed)
+std::size_t countOnBoxSurface(const Vec3 &lo, const Vec3 &hi, const std::vector<double> &specials, double a, double b,
+                              std::size_t n, std::uint64_t seed)
 {
     test::TestRandom rng(seed);
     std::size_t count = 0;
@@ -317,8 +318,8 @@ TEST(SolidQuery, BoxesAgainstAnalyticReference)
 
     const Vec3 lo2(-0.5, -1, 0), hi2(1.5, 0.25, 2);
     expectMatchesReference("box", test::boxMesh(lo2, hi2), inBox(lo2, hi2), specials, -2, 2, kPoints, 2);
-    expectMatchesReference("box, SketchUp duplicates", withReversedDuplicates(test::boxMesh(lo2, hi2)),
-                           inBox(lo2, hi2), specials, -2, 2, kPoints, 3);
+    expectMatchesReference("box, SketchUp duplicates", withReversedDuplicates(test::boxMesh(lo2, hi2)), inBox(lo2, hi2),
+                           specials, -2, 2, kPoints, 3);
     expectMatchesReference("box, unwelded", unwelded(test::boxMesh(lo, hi)), inBox(lo, hi), specials, -2, 2, kPoints,
                            4);
 
@@ -346,7 +347,8 @@ TEST(SolidQuery, BoxesAgainstAnalyticReference)
         return inBox(lo, hi)(p) || inBox(Vec3(1, -1, -1), Vec3(2, 1, 0))(p);
     };
     expectMatchesReference("two touching boxes", pair, inPair, specials, -2, 2.5, kPoints, 5);
-    const TriangleMesh nested = merged(test::boxMesh(lo, hi), test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)));
+    const TriangleMesh nested =
+        merged(test::boxMesh(lo, hi), test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)));
     expectMatchesReference("nested boxes", nested, inBox(lo, hi), specials, -2, 2, kPoints, 6);
 }
 
@@ -466,9 +468,9 @@ void checkOmplappEnvironment(const std::string &path, double expectedFraction)
             largest = std::max(largest, c.triangles.size());
         }
     const double fraction = query.solidVolumeFraction(200000, 42);
-    std::cout << path << ": " << mesh->triangleCount() << " triangles, " << query.components().size()
-              << " components, " << query.closedComponentCount() << " closed (" << closedTriangles
-              << " triangles, largest " << largest << "); solid volume fraction " << fraction << "\n";
+    std::cout << path << ": " << mesh->triangleCount() << " triangles, " << query.components().size() << " components, "
+              << query.closedComponentCount() << " closed (" << closedTriangles << " triangles, largest " << largest
+              << "); solid volume fraction " << fraction << "\n";
     EXPECT_GT(query.closedComponentCount(), 0u);
     EXPECT_NEAR(fraction, expectedFraction, 0.06);
 
@@ -513,8 +515,7 @@ void checkOmplappEnvironment(const std::string &path, double expectedFraction)
                 ++checked;
                 const bool expected = bruteForceInsideAny(*mesh, query.components(), p, rng);
                 if (query.insideAnySolid(p) != expected && ++mismatches <= 10)
-                    ADD_FAILURE() << "point (" << p.transpose() << ") should be "
-                                  << (expected ? "inside" : "outside");
+                    ADD_FAILURE() << "point (" << p.transpose() << ") should be " << (expected ? "inside" : "outside");
             }
         }
     }

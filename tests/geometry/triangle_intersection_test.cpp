@@ -87,8 +87,7 @@ std::array<RTriangle, 2> exactPair(const Triangle &a, const Triangle &b)
                 if (d.mantissa != 0)
                     lowest = std::min(lowest, d.exponent);
             }
-    auto toExact = [&](const Dyadic &d) -> Rational
-    {
+    auto toExact = [&](const Dyadic &d) -> Rational {
         if (d.mantissa == 0)
             return Rational(0);
         Integer m = d.mantissa < 0 ? Integer(-d.mantissa) : Integer(d.mantissa);
@@ -355,9 +354,9 @@ struct Tally
 
     void report() const
     {
-        std::cout << "[ category ] " << name << ": " << pairs << " pairs, " << intersecting
-                  << " intersecting, " << agreements << " agree, " << disagreements << " disagree, " << asymmetric
-                  << " violate symmetry" << std::endl;
+        std::cout << "[ category ] " << name << ": " << pairs << " pairs, " << intersecting << " intersecting, "
+                  << agreements << " agree, " << disagreements << " disagree, " << asymmetric << " violate symmetry"
+                  << std::endl;
     }
 };
 
@@ -366,8 +365,8 @@ struct Tally
 bool symmetric(const Triangle &a, const Triangle &b, bool expected)
 {
     const Triangle ra = rotated(a), rb = rotated(b);
-    return library(b, a) == expected && library(ra, reversed(b)) == expected &&
-           library(rotated(ra), rb) == expected && library(reversed(rb), reversed(a)) == expected;
+    return library(b, a) == expected && library(ra, reversed(b)) == expected && library(rotated(ra), rb) == expected &&
+           library(reversed(rb), reversed(a)) == expected;
 }
 
 // Compares one pair; returns the library's answer.
@@ -451,7 +450,8 @@ Vec3 gridPointOnSide(const Triangle &t, int side, TestRandom &rng)
 std::vector<Construction> constructions()
 {
     std::vector<Construction> c;
-    c.push_back({"shared edge", [](TestRandom &rng) {
+    c.push_back({"shared edge",
+                 [](TestRandom &rng) {
                      const Triangle a = randomGridTriangle(rng, -4, 4);
                      const int i = integerIn(rng, 0, 2), j = (i + integerIn(rng, 1, 2)) % 3;
                      for (;;)
@@ -464,7 +464,8 @@ std::vector<Construction> constructions()
                  true});
     // The other triangle stays strictly on the far side of a plane through the shared vertex
     // that has the first triangle on its near side, so only the vertex is common.
-    c.push_back({"shared vertex only", [](TestRandom &rng) {
+    c.push_back({"shared vertex only",
+                 [](TestRandom &rng) {
                      const Triangle a = randomRelabel(randomGridTriangle(rng, -4, 4), rng);
                      Vec3 m;
                      do
@@ -480,7 +481,8 @@ std::vector<Construction> constructions()
                  },
                  true});
     // Coplanar, in the opposite cone at the shared vertex.
-    c.push_back({"coplanar shared vertex", [](TestRandom &rng) {
+    c.push_back({"coplanar shared vertex",
+                 [](TestRandom &rng) {
                      const Triangle a = randomRelabel(randomGridTriangle(rng, -4, 4), rng);
                      const Vec3 e1 = a.v[1] - a.v[0], e2 = a.v[2] - a.v[0];
                      for (;;)
@@ -493,7 +495,8 @@ std::vector<Construction> constructions()
                      }
                  },
                  true});
-    c.push_back({"coplanar overlapping", [](TestRandom &rng) {
+    c.push_back({"coplanar overlapping",
+                 [](TestRandom &rng) {
                      const PlaneFrame f = randomFrame(rng);
                      const Triangle a = frameTriangle(f);
                      for (;;)
@@ -506,33 +509,36 @@ std::vector<Construction> constructions()
                  },
                  true});
     // Two vertices on the line x + y = 1 (one of them on the edge itself), the third beyond it.
-    c.push_back({"coplanar touching at an edge", [](TestRandom &rng) {
+    c.push_back({"coplanar touching at an edge",
+                 [](TestRandom &rng) {
                      const PlaneFrame f = randomFrame(rng);
                      const Triangle a = frameTriangle(f);
                      for (;;)
                      {
                          const double t1 = eighth(rng, 0, 8), t2 = eighth(rng, -8, 16);
                          const double t3 = eighth(rng, -8, 16), beyond = eighth(rng, 1, 16);
-                         const Triangle b{{f.at(t1, 1 - t1), f.at(t2, 1 - t2 + (t2 == t1 ? beyond : 0)),
-                                           f.at(t3, 1 - t3 + beyond)}};
+                         const Triangle b{
+                             {f.at(t1, 1 - t1), f.at(t2, 1 - t2 + (t2 == t1 ? beyond : 0)), f.at(t3, 1 - t3 + beyond)}};
                          if (!gridDegenerate(b))
                              return std::make_pair(randomRelabel(a, rng), randomRelabel(b, rng));
                      }
                  },
                  true});
     // Two vertices on x + y = 1 + gap, the third further out: disjoint by exactly the gap.
-    c.push_back({"coplanar tiny gap", [](TestRandom &rng) {
+    c.push_back({"coplanar tiny gap",
+                 [](TestRandom &rng) {
                      const PlaneFrame f = randomFrame(rng);
                      const Triangle a = frameTriangle(f);
                      const double gap = std::ldexp(1.0, -integerIn(rng, 20, 30));
                      const double t1 = eighth(rng, -8, 16), t2 = t1 + eighth(rng, 1, 16), t3 = eighth(rng, -8, 16);
-                     const Triangle b{{f.at(t1, 1 + gap - t1), f.at(t2, 1 + gap - t2),
-                                       f.at(t3, 1 + gap - t3 + eighth(rng, 1, 16))}};
+                     const Triangle b{
+                         {f.at(t1, 1 + gap - t1), f.at(t2, 1 + gap - t2), f.at(t3, 1 + gap - t3 + eighth(rng, 1, 16))}};
                      return std::make_pair(randomRelabel(a, rng), randomRelabel(b, rng));
                  },
                  false});
     // The same gap measured across planes: a parallel copy offset by a tiny multiple of the normal.
-    c.push_back({"parallel tiny offset", [](TestRandom &rng) {
+    c.push_back({"parallel tiny offset",
+                 [](TestRandom &rng) {
                      const PlaneFrame f = randomFrame(rng);
                      const Triangle a = frameTriangle(f);
                      const Vec3 shift = std::ldexp(1.0, -integerIn(rng, 20, 30)) * f.u.cross(f.v);
@@ -541,14 +547,16 @@ std::vector<Construction> constructions()
                          const Triangle b{{interiorPoint(a, rng), f.at(eighth(rng, -16, 24), eighth(rng, -16, 24)),
                                            f.at(eighth(rng, -16, 24), eighth(rng, -16, 24))}};
                          if (!gridDegenerate(b))
-                             return std::make_pair(randomRelabel(a, rng),
-                                                   randomRelabel({{b.v[0] + shift, b.v[1] + shift, b.v[2] + shift}}, rng));
+                             return std::make_pair(
+                                 randomRelabel(a, rng),
+                                 randomRelabel({{b.v[0] + shift, b.v[1] + shift, b.v[2] + shift}}, rng));
                      }
                  },
                  false});
     // Barycentric point with weights 1/4, 1/4, 1/2 (in random order) on the face, the other two
     // vertices strictly on one side of the plane.
-    c.push_back({"vertex on face", [](TestRandom &rng) {
+    c.push_back({"vertex on face",
+                 [](TestRandom &rng) {
                      const Triangle a = randomRelabel(randomGridTriangle(rng, -4, 4), rng);
                      const Vec3 p = 0.25 * a.v[0] + 0.25 * a.v[1] + 0.5 * a.v[2];
                      const int side = integerIn(rng, 0, 1) ? 1 : -1;
@@ -561,10 +569,12 @@ std::vector<Construction> constructions()
                  },
                  true});
     // As above, but the vertex hovers a tiny multiple of the normal above the face.
-    c.push_back({"vertex just above face", [](TestRandom &rng) {
+    c.push_back({"vertex just above face",
+                 [](TestRandom &rng) {
                      const Triangle a = randomRelabel(randomGridTriangle(rng, -4, 4), rng);
                      const int side = integerIn(rng, 0, 1) ? 1 : -1;
-                     const Vec3 p = interiorPoint(a, rng) + side * std::ldexp(1.0, -integerIn(rng, 20, 30)) * gridNormal(a);
+                     const Vec3 p =
+                         interiorPoint(a, rng) + side * std::ldexp(1.0, -integerIn(rng, 20, 30)) * gridNormal(a);
                      for (;;)
                      {
                          const Triangle b{{p, gridPointOnSide(a, side, rng), gridPointOnSide(a, side, rng)}};
@@ -574,7 +584,8 @@ std::vector<Construction> constructions()
                  },
                  false});
     // An edge whose midpoint is an interior point of the other triangle and which is not in its plane.
-    c.push_back({"pierced through the interior", [](TestRandom &rng) {
+    c.push_back({"pierced through the interior",
+                 [](TestRandom &rng) {
                      const Triangle a = randomRelabel(randomGridTriangle(rng, -4, 4), rng);
                      const Vec3 p = interiorPoint(a, rng);
                      for (;;)
@@ -763,8 +774,7 @@ TEST(TriangleIntersection, DegenerateTrianglesMatchSegmentReference)
 {
     TestRandom rng(31337);
     Tally collinear{"degenerate vs proper"}, both{"degenerate vs degenerate"};
-    auto degenerateTriangle = [&rng]()
-    {
+    auto degenerateTriangle = [&rng]() {
         const Vec3 p = gridPoint(rng, -3, 3), d = gridPoint(rng, -2, 2);
         return Triangle{{p + integerIn(rng, -2, 2) * d, p + integerIn(rng, -2, 2) * d, p + integerIn(rng, -2, 2) * d}};
     };
@@ -795,7 +805,9 @@ TEST(TriangleIntersection, CoordinatesNearOverflow)
     const Case cases[] = {
         {"parallel copy", {{o, x, y}}, {{Vec3(0, 0, 1e308), Vec3(1e308, 0, 1e308), Vec3(0, 1e308, 1e308)}}},
         {"above the face", {{o, x, y}}, {{Vec3(0, 0, 1.7e308), Vec3(1e307, 1e307, 1e308), Vec3(1e307, 2e307, 1e308)}}},
-        {"vertex on face", {{o, x, y}}, {{Vec3(1e307, 1e307, 0), Vec3(1e307, 1e307, 1e308), Vec3(2e307, 1e307, 1e308)}}},
+        {"vertex on face",
+         {{o, x, y}},
+         {{Vec3(1e307, 1e307, 0), Vec3(1e307, 1e307, 1e308), Vec3(2e307, 1e307, 1e308)}}},
         {"pierced", {{o, x, y}}, {{Vec3(1e307, 1e307, -1e308), Vec3(1e307, 1e307, 1e308), Vec3(1e308, 1e308, 0)}}},
     };
     for (const Case &c : cases)
@@ -818,7 +830,8 @@ TEST(TriangleIntersection, MixedMagnitudeCoordinates)
         {{{Vec3(0x1.9276d94fb26eap-535, 0x1.b2c7d1c183724p+120, 0),
            Vec3(-0x1.e534b32c7cf24p+664, 0x1.08ee24c871ebep+0, -0x1.fde52fc42fbeep+120),
            Vec3(0, -0x1.0baa421b3e47p+664, 0)}},
-         {{Vec3(0x1.9bf884bfa98dp-535, 0, 0), Vec3(0x1.60abfd0940f5cp-537, 0x1.a312e0e358e3bp+120, 0x1.c0084ff2ce49p-537),
+         {{Vec3(0x1.9bf884bfa98dp-535, 0, 0),
+           Vec3(0x1.60abfd0940f5cp-537, 0x1.a312e0e358e3bp+120, 0x1.c0084ff2ce49p-537),
            Vec3(-0x1.88dce6e49bc92p+120, -0x1.c3c517a296046p+0, 0x1.ffc0f64cc0968p+120)}}},
         {{{Vec3(0, -0x1.c6c4ea182d5bbp+664, 0x1.65e57784cfe44p-535),
            Vec3(0x1.11e91752400f8p-537, -0x1.ca04e99702cb6p-537, 0),
@@ -835,8 +848,7 @@ TEST(TriangleIntersection, MixedMagnitudeCoordinates)
         check(tally, pair[0], pair[1], reference(pair[0], pair[1]));
     }
     TestRandom rng(9001);
-    auto coordinate = [&rng]()
-    {
+    auto coordinate = [&rng]() {
         const int k = integerIn(rng, 0, 5);
         if (k == 5)
             return 0.0;

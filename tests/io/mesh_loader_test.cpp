@@ -195,8 +195,9 @@ TEST(MeshLoader, OffAnnouncingMoreThanItsBytesHoldIsAnError)
 {
     const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     const std::string huge = "88888888888888888888888888888888";
-    for (const std::string &header : std::vector<std::string>{"OFF\n3 " + huge + " 0\n", "OFF\n" + huge + " 1 0\n", "COFF 3 " + huge + " 0\n",
-                                      "nOFF 3\n3 " + huge + " 0\n", "# comment\nOFF\n3 4000000000 0\n"})
+    for (const std::string &header :
+         std::vector<std::string>{"OFF\n3 " + huge + " 0\n", "OFF\n" + huge + " 1 0\n", "COFF 3 " + huge + " 0\n",
+                                  "nOFF 3\n3 " + huge + " 0\n", "# comment\nOFF\n3 4000000000 0\n"})
     {
         const std::string text = header + body;
         for (const std::string format : {"off", "OFF", ""})
@@ -232,8 +233,9 @@ TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
 
 TEST(MeshLoader, DropsAndCountsDegenerateTriangles)
 {
-    const LoadedMesh m = loadMesh(
-        test::writeTempFile("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n"), MeshRole::Environment);
+    const LoadedMesh m =
+        loadMesh(test::writeTempFile("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n"),
+                 MeshRole::Environment);
     EXPECT_EQ(m.mesh->triangleCount(), 1u);
     EXPECT_EQ(m.droppedDegenerate, 1u);
 }

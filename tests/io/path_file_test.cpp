@@ -73,7 +73,8 @@ TEST(PathFile, ExtremeQuaternionsStillGiveTheirRotation)
     // The zero quaternion stays the identity, as before.
     expectRotation(RigidTransform::fromTranslationQuaternion(Vec3::Zero(), 0, 0, 0, 0), Mat3::Identity(), "zero");
     // ...while pose files accept only unit quaternions (within 1e-3), naming the line otherwise.
-    for (const char *line : {"1 2 3 1e200 1e200 1e200 1e200\n", "1 2 3 1e-200 0 0 1e-200\n", "1 2 3 5e-324 0 0 5e-324\n"})
+    for (const char *line :
+         {"1 2 3 1e200 1e200 1e200 1e200\n", "1 2 3 1e-200 0 0 1e-200\n", "1 2 3 5e-324 0 0 5e-324\n"})
         EXPECT_THROW(parsePoses(std::string("\n") + line, "extreme.path", false), InputError) << line;
 }
 
@@ -81,7 +82,8 @@ TEST(PathFile, ExtremeQuaternionsStillGiveTheirRotation)
 TEST(PathFile, ExtremeAxesStillGiveTheirRotation)
 {
     const double quarter = 1.5707963267948966;
-    expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(1e300, 0, 0), quarter), quarterTurnX(), "axis 1e300");
+    expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(1e300, 0, 0), quarter), quarterTurnX(),
+                   "axis 1e300");
     expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(1e-300, 0, 0), quarter), quarterTurnX(),
                    "axis 1e-300");
     expectRotation(RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3::Zero(), quarter), Mat3::Identity(), "zero axis");

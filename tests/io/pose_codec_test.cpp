@@ -102,10 +102,10 @@ TEST(PoseCodec, StateRowsGiveTheSameTransformBitForBit)
         for (int k = 3; k < 7; ++k)
             row[k] = scale * component(random);
         const RigidTransform direct = transformOfRow(row, false);
-        expectSameBits(direct,
-                       RigidTransform::fromTranslationQuaternion(Vec3(row[0], row[1], row[2]), row[6], row[3], row[4],
-                                                                 row[5]),
-                       "fromTranslationQuaternion");
+        expectSameBits(
+            direct,
+            RigidTransform::fromTranslationQuaternion(Vec3(row[0], row[1], row[2]), row[6], row[3], row[4], row[5]),
+            "fromTranslationQuaternion");
         expectSameBits(transformOfStateRow(stateRowOf(row, false).data(), false), direct, "3D state row");
 
         const double planar[3] = {row[0], row[1], yaw(random)};

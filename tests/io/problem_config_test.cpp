@@ -113,10 +113,12 @@ TEST(ProblemConfig, PlanarProblemAndSampler)
 
 TEST(ProblemConfig, ErrorsNameFileAndLine)
 {
-    EXPECT_NE(errorOf(std::string(kMinimal) + "this line has no equals sign\n").find("bad.cfg:10: expected 'key = value'"),
-              std::string::npos);
-    EXPECT_NE(errorOf(std::string(kMinimal) + "start.theta = abc\n").find("bad.cfg:10: 'start.theta' needs a finite number"),
-              std::string::npos);
+    EXPECT_NE(
+        errorOf(std::string(kMinimal) + "this line has no equals sign\n").find("bad.cfg:10: expected 'key = value'"),
+        std::string::npos);
+    EXPECT_NE(
+        errorOf(std::string(kMinimal) + "start.theta = abc\n").find("bad.cfg:10: 'start.theta' needs a finite number"),
+        std::string::npos);
     EXPECT_NE(errorOf(std::string(kMinimal) + "start.theta = nan\n").find(":10:"), std::string::npos);
     EXPECT_NE(errorOf(std::string(kMinimal) + "[planner]\nrrt.range=3\n").find("bad.cfg:11: setting for planner 'rrt'"),
               std::string::npos);

@@ -159,7 +159,8 @@ std::vector<Vec3> uniformSurfaceSamples(const std::vector<SurfaceTriangle> &surf
     {
         const double pick = unit(rng) * total;
         const std::size_t k =
-            std::min(surface.size() - 1, std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()));
+            std::min(surface.size() - 1,
+                     std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()));
         const double r = std::sqrt(unit(rng)), s = unit(rng);
         const SurfaceTriangle &t = surface[k];
         samples.push_back((1.0 - r) * t.a + r * (1.0 - s) * t.b + r * s * t.c);
@@ -200,7 +201,8 @@ TriangleMesh loadEnvironmentMesh(const std::string &path) { return *loadMesh(pat
 
 std::size_t leafCount(const Tree &tree)
 {
-    return std::size_t(std::count_if(tree.nodes().begin(), tree.nodes().end(), [](const Tree::Node &n) { return n.isLeaf(); }));
+    return std::size_t(
+        std::count_if(tree.nodes().begin(), tree.nodes().end(), [](const Tree::Node &n) { return n.isLeaf(); }));
 }
 
 enum class Soup
@@ -257,7 +259,7 @@ struct Coverage
 {
     std::size_t pieces = 0;
     std::size_t byDimension[4] = {0, 0, 0, 0};  ///< pieces by affine dimension
-    double worstRelativeViolation = 0.0;  ///< max over corners of maxViolation / coordinates' magnitude
+    double worstRelativeViolation = 0.0;        ///< max over corners of maxViolation / coordinates' magnitude
 };
 
 Coverage checkCoverage(const TriangleMesh &mesh, unsigned leafSize, const std::string &label)
@@ -297,8 +299,8 @@ Coverage checkCoverage(const TriangleMesh &mesh, unsigned leafSize, const std::s
                 const double magnitude = std::max(corner.cwiseAbs().maxCoeff(), piece.magnitude());
                 const double relative = piece.maxViolation(corner) / magnitude;
                 c.worstRelativeViolation = std::max(c.worstRelativeViolation, relative);
-                EXPECT_LE(relative, 1e-9) << label << ": corner " << k << " of triangle " << t << " outside its piece by "
-                                          << piece.maxViolation(corner);
+                EXPECT_LE(relative, 1e-9) << label << ": corner " << k << " of triangle " << t
+                                          << " outside its piece by " << piece.maxViolation(corner);
             }
         }
     }
@@ -315,12 +317,12 @@ Coverage checkCoverage(const TriangleMesh &mesh, unsigned leafSize, const std::s
 struct ConcavityAgreement
 {
     std::size_t pieces = 0, concavePieces = 0;
-    double smallestRatio = std::numeric_limits<double>::infinity();  ///< reported / brute force, concave pieces
+    double smallestRatio = std::numeric_limits<double>::infinity();   ///< reported / brute force, concave pieces
     double largestExcess = -std::numeric_limits<double>::infinity();  ///< reported - dense brute force
 };
 
-void checkConcavity(const TriangleMesh &mesh, unsigned leafSize, const std::string &label, ConcavityAgreement &agreement,
-                    int uniformSamples = 2000)
+void checkConcavity(const TriangleMesh &mesh, unsigned leafSize, const std::string &label,
+                    ConcavityAgreement &agreement, int uniformSamples = 2000)
 {
     const Tree tree(std::make_shared<const TriangleMesh>(mesh), leafSize);
     const ConvexDecomposition d = decomposeLeaves(tree);
@@ -350,8 +352,8 @@ void checkConcavity(const TriangleMesh &mesh, unsigned leafSize, const std::stri
         // A maximum over points of the surface never exceeds the maximum over a superset of them.
         EXPECT_LE(reported, dense + eps) << label << ": piece " << p << " (" << triangles.size() << " triangles)";
         // Coarser sampling, but not wildly below: within a factor two of the brute force.
-        EXPECT_GE(reported, 0.5 * uniform - eps) << label << ": piece " << p << " (" << triangles.size()
-                                                 << " triangles), dense brute force " << dense;
+        EXPECT_GE(reported, 0.5 * uniform - eps)
+            << label << ": piece " << p << " (" << triangles.size() << " triangles), dense brute force " << dense;
         if (uniform > eps)
         {
             ++agreement.concavePieces;
@@ -404,7 +406,8 @@ void checkApproximateMode(const std::string &cfg, std::size_t poseCount)
     // Distances of the extra contacts: the OBB tree's branch and bound (it equals brute force's
     // distance, which is O(triangle pairs) per pose and too slow for the larger meshes here).
     const auto distances = makeChecker("obb", problem.scene);
-    const double scale = 1.0 + problem.scene.environment->radiusAboutOrigin() + problem.scene.robot->radiusAboutOrigin();
+    const double scale =
+        1.0 + problem.scene.environment->radiusAboutOrigin() + problem.scene.robot->radiusAboutOrigin();
     const auto run = [&](const CheckerOptions &options) {
         const auto checker = makeChecker("lp", problem.scene, options);
         ModeCount c;
@@ -428,14 +431,15 @@ void checkApproximateMode(const std::string &cfg, std::size_t poseCount)
     const ModeCount exact = run(CheckerOptions{});
     EXPECT_EQ(exact.missed, 0u) << name << " exact";
     EXPECT_EQ(exact.extra, 0u) << name << " exact";
-    std::cout << "[ approx ] " << name << ": " << poseCount << " poses, " << colliding << " colliding; exact: "
-              << exact.missed << " missed, " << exact.extra << " extra\n";
+    std::cout << "[ approx ] " << name << ": " << poseCount << " poses, " << colliding
+              << " colliding; exact: " << exact.missed << " missed, " << exact.extra << " extra\n";
 
     // The pieces the LP checker builds (leaves of 8 triangles), to say how many decide alone.
     const ConvexDecomposition robotPieces = decomposeLeaves(Tree(problem.scene.robot, 8));
     const ConvexDecomposition environmentPieces = decomposeLeaves(Tree(problem.scene.environment, 8));
     const auto atMost = [](const ConvexDecomposition &d, double t) {
-        return std::count_if(d.approximationBound.begin(), d.approximationBound.end(), [t](double c) { return c <= t; });
+        return std::count_if(d.approximationBound.begin(), d.approximationBound.end(),
+                             [t](double c) { return c <= t; });
     };
 
     // The last tolerance lets every piece decide alone: the plain convex-hull test, which must
@@ -455,10 +459,11 @@ void checkApproximateMode(const std::string &cfg, std::size_t poseCount)
         }
         // Early contacts only within the tolerance.
         EXPECT_LE(c.maxExtraDistance, tolerance + 1e-9 * scale) << name << " T=" << tolerance;
-        std::cout << "[ approx ] " << name << " T=" << tolerance << ": pieces deciding alone " << atMost(robotPieces, tolerance)
-                  << "/" << robotPieces.pieces.size() << " robot, " << atMost(environmentPieces, tolerance) << "/"
-                  << environmentPieces.pieces.size() << " environment; " << c.missed << " missed, " << c.extra
-                  << " early contacts (max true distance " << c.maxExtraDistance << ")\n";
+        std::cout << "[ approx ] " << name << " T=" << tolerance << ": pieces deciding alone "
+                  << atMost(robotPieces, tolerance) << "/" << robotPieces.pieces.size() << " robot, "
+                  << atMost(environmentPieces, tolerance) << "/" << environmentPieces.pieces.size() << " environment; "
+                  << c.missed << " missed, " << c.extra << " early contacts (max true distance " << c.maxExtraDistance
+                  << ")\n";
     }
     std::cout << "[ approx ] " << name << ": "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
@@ -497,15 +502,16 @@ TEST(ConvexDecomposition, CoversRandomSoups)
                 {
                     const TriangleMesh soup = randomSoup(kind, 150, scale, scale * offset, rng);
                     const Coverage c = checkCoverage(soup, leaf,
-                                                     "soup " + std::to_string(int(kind)) + " scale " + std::to_string(scale) +
-                                                         " leaf " + std::to_string(leaf));
+                                                     "soup " + std::to_string(int(kind)) + " scale " +
+                                                         std::to_string(scale) + " leaf " + std::to_string(leaf));
                     worst = std::max(worst, c.worstRelativeViolation);
                     pieces += c.pieces;
                     for (int k = 0; k < 4; ++k)
                         byDimension[k] += c.byDimension[k];
                 }
-    std::cout << "[ coverage ] random soups: " << pieces << " pieces (" << byDimension[3] << " solid, " << byDimension[2]
-              << " flat, " << byDimension[1] + byDimension[0] << " lower), worst relative violation " << worst << "\n";
+    std::cout << "[ coverage ] random soups: " << pieces << " pieces (" << byDimension[3] << " solid, "
+              << byDimension[2] << " flat, " << byDimension[1] + byDimension[0] << " lower), worst relative violation "
+              << worst << "\n";
     EXPECT_GT(byDimension[3], 0u);
     EXPECT_GT(byDimension[2], 0u);
 }

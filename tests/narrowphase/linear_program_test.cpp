@@ -84,10 +84,7 @@ std::vector<Vec3> scaled(std::vector<Vec3> points, double s)
     return points;
 }
 
-RigidTransform randomPose(TestRandom &rng, const Vec3 &translation)
-{
-    return {test::randomRotation(rng), translation};
-}
+RigidTransform randomPose(TestRandom &rng, const Vec3 &translation) { return {test::randomRotation(rng), translation}; }
 
 // ---------------------------------------------------------------------------------------------
 // Checking one pair.

@@ -34,10 +34,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // ---------------------------------------------------------------------------------------------
 // Point sets, pieces and poses.
 
-double uniform(TestRandom &rng, double lo, double hi)
-{
-    return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
+double uniform(TestRandom &rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
 
 Vec3 randomInBall(TestRandom &rng)
 {
@@ -90,10 +87,7 @@ ConvexPiece translated(const ConvexPiece &piece, const Vec3 &offset)
     return piece.transformed({Mat3::Identity(), offset});
 }
 
-double pairMagnitude(const ConvexPiece &a, const ConvexPiece &b)
-{
-    return std::max(a.magnitude(), b.magnitude());
-}
+double pairMagnitude(const ConvexPiece &a, const ConvexPiece &b) { return std::max(a.magnitude(), b.magnitude()); }
 
 // The hull of the piece at times 0 and t of its translation: the region it sweeps.
 ConvexPiece sweptHull(const ConvexPiece &piece, const Vec3 &displacement)
@@ -257,8 +251,7 @@ TEST(TimeOfContact, BoxesAgainstAnalyticAnswer)
         const Vec3 size1 = scale * Vec3(uniform(rng, 0.2, 2), uniform(rng, 0.2, 2), uniform(rng, 0.2, 2));
         const Vec3 v = scale * uniform(rng, 0.5, 6.0) * randomUnit(rng);
         // Start so that the centre passes near the fixed box at a random fraction of the step.
-        const Vec3 centre1 =
-            0.5 * (lo2 + hi2) - uniform(rng, -0.3, 1.3) * v + scale * 1.5 * randomInBall(rng);
+        const Vec3 centre1 = 0.5 * (lo2 + hi2) - uniform(rng, -0.3, 1.3) * v + scale * 1.5 * randomInBall(rng);
         const Vec3 lo1 = centre1 - 0.5 * size1, hi1 = centre1 + 0.5 * size1;
 
         double speed = 1.0;
@@ -266,8 +259,8 @@ TEST(TimeOfContact, BoxesAgainstAnalyticAnswer)
         // Contact that only just happens or just fails (within 1e-9 of the step) is a coin toss.
         if (std::isinf(expected))
         {
-            const double t1 = boxTimeOfContact(lo1 - Vec3::Constant(1e-9 * scale), hi1 + Vec3::Constant(1e-9 * scale),
-                                               v, lo2, hi2);
+            const double t1 =
+                boxTimeOfContact(lo1 - Vec3::Constant(1e-9 * scale), hi1 + Vec3::Constant(1e-9 * scale), v, lo2, hi2);
             if (!std::isinf(t1))
             {
                 ++ambiguous;
@@ -404,8 +397,8 @@ TEST(TimeOfContact, ExactCases)
     EXPECT_FALSE(translationalTimeOfContact(left, Vec3(1.99, 0, 0), unit).contact);
     // A near miss by 2^-26 (1.5e-8) of the size is no contact: only rounding-level gaps count.
     EXPECT_FALSE(translationalTimeOfContact(left, Vec3(2.0 - std::ldexp(1.0, -26), 0, 0), unit).contact);
-    EXPECT_FALSE(translationalTimeOfContact(left, Vec3(2.0, 0, 0), translated(unit, Vec3(std::ldexp(1.0, -26), 0, 0)))
-                     .contact);
+    EXPECT_FALSE(
+        translationalTimeOfContact(left, Vec3(2.0, 0, 0), translated(unit, Vec3(std::ldexp(1.0, -26), 0, 0))).contact);
     EXPECT_FALSE(translationalTimeOfContact(left, Vec3(-2, 0, 0), unit).contact);
     // Edge against edge exactly at the end: the box moved diagonally to meet along x = 0, z = 0.
     const ConvexPiece corner = ConvexPiece::hullOf(boxCorners(Vec3(-2, 0.25, -2), Vec3(-1, 0.75, -1)));
@@ -534,7 +527,6 @@ TEST(TimeOfContact, AgreesWithStaticNarrowPhase)
             EXPECT_FALSE(intersectConvexPieces(before, fixed).intersecting)
                 << "pair " << i << ": contact before grid time " << k * step << ", LP time " << toc.time;
         }
-
     }
     std::printf("[random hulls vs static narrow phase] %d pairs (%d on the full 1e-4 grid, %d of them without "
                 "contact), %d contacts, %d grazing (skipped); LP %.2f us/pair; %.2f s in all\n",
@@ -691,9 +683,8 @@ TEST(Penetration, BoxesAgainstAnalyticAnswer)
 
     // Degenerate pieces: a flat square pushed into a box, a point inside one.
     const ConvexPiece unit = ConvexPiece::hullOf(boxCorners(Vec3(0, 0, 0), Vec3(1, 1, 1)));
-    const ConvexPiece square =
-        ConvexPiece::hullOf({Vec3(0.25, 0.25, 0.75), Vec3(0.75, 0.25, 0.75), Vec3(0.75, 0.75, 0.75),
-                             Vec3(0.25, 0.75, 0.75)});
+    const ConvexPiece square = ConvexPiece::hullOf(
+        {Vec3(0.25, 0.25, 0.75), Vec3(0.75, 0.25, 0.75), Vec3(0.75, 0.75, 0.75), Vec3(0.25, 0.75, 0.75)});
     Penetration pd = penetrationDepth(square, unit);
     ASSERT_TRUE(pd.intersecting);
     EXPECT_NEAR(pd.depth, 0.25, 1e-12);
@@ -771,9 +762,8 @@ TEST(DirectionalPenetration, BoxesAgainstAnalyticAnswer)
     // Moving back along the motion would make a disjoint pair overlap: still 0 (they do not meet now).
     EXPECT_EQ(directionalPenetration(translated(right, Vec3(2 * sliver, 0, 0)), Vec3(1, 0, 0), unit), 0.0);
     // A flat square inside the box, having come down: back up by 1/4 to its top face.
-    const ConvexPiece square =
-        ConvexPiece::hullOf({Vec3(0.25, 0.25, 0.75), Vec3(0.75, 0.25, 0.75), Vec3(0.75, 0.75, 0.75),
-                             Vec3(0.25, 0.75, 0.75)});
+    const ConvexPiece square = ConvexPiece::hullOf(
+        {Vec3(0.25, 0.25, 0.75), Vec3(0.75, 0.25, 0.75), Vec3(0.75, 0.75, 0.75), Vec3(0.25, 0.75, 0.75)});
     EXPECT_NEAR(directionalPenetration(square, Vec3(0, 0, -1), unit), 0.25, 1e-12);
 }
 }  // namespace

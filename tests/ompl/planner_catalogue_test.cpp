@@ -27,9 +27,10 @@ TEST(PlannerCatalogue, EveryNamedPlannerConstructs)
 {
     const auto si = se3();
     const auto names = plannerNames();
-    for (const char *expected : {"rrtconnect", "rrt", "rrtstar", "prm", "prmstar", "lazyprm", "lazyprmstar", "kpiece",
-                                 "bkpiece", "lbkpiece", "est", "biest", "sbl", "stride", "pdst", "fmt", "bfmt",
-                                 "bitstar", "lbtrrt", "trrt", "spars", "spars2", "cforest", "aps"})
+    for (const char *expected :
+         {"rrtconnect", "rrt",      "rrtstar", "prm",   "prmstar", "lazyprm", "lazyprmstar", "kpiece",
+          "bkpiece",    "lbkpiece", "est",     "biest", "sbl",     "stride",  "pdst",        "fmt",
+          "bfmt",       "bitstar",  "lbtrrt",  "trrt",  "spars",   "spars2",  "cforest",     "aps"})
         EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
     for (const std::string &n : names)
     {

@@ -59,11 +59,27 @@ void solveAndVerify(const std::string &cfg, const std::string &planner, double s
 }
 }  // namespace
 
-TEST(Solve, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); solveAndVerify(cfg, "rrtconnect", 60); }
-TEST(Solve, Easy) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Easy.cfg"); solveAndVerify(cfg, "rrtconnect", 60); }
+TEST(Solve, Cubicles)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
+    solveAndVerify(cfg, "rrtconnect", 60);
+}
+TEST(Solve, Easy)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Easy.cfg");
+    solveAndVerify(cfg, "rrtconnect", 60);
+}
 // The narrow-passage problem, planned with continuous motion checks (the default) as well.
-TEST(Solve, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); solveAndVerify(cfg, "rrtconnect", 120); }
-TEST(Solve, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); solveAndVerify(cfg, "rrtconnect", 60); }
+TEST(Solve, Twistycool)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg");
+    solveAndVerify(cfg, "rrtconnect", 120);
+}
+TEST(Solve, MazePlanar)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg");
+    solveAndVerify(cfg, "rrtconnect", 60);
+}
 TEST(Solve, ProjectProblems)
 {
     solveAndVerify(test::sourcePath("problems/window_3d.cfg"), "rrtconnect", 60);

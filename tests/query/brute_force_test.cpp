@@ -62,7 +62,8 @@ TriangleMesh triangleSoup(std::size_t count, double extent, double size, bool sn
         const Vec3 c(centre(rng), centre(rng), centre(rng));
         for (int k = 0; k < 3; ++k)
         {
-            const Vec3 d = snap ? size * Vec3(grid(rng), grid(rng), grid(rng)) : Vec3(offset(rng), offset(rng), offset(rng));
+            const Vec3 d =
+                snap ? size * Vec3(grid(rng), grid(rng), grid(rng)) : Vec3(offset(rng), offset(rng), offset(rng));
             const Vec3 snapped =
                 size * Vec3(std::round(c.x() / size), std::round(c.y() / size), std::round(c.z() / size));
             mesh.vertices.push_back(snap ? Vec3(snapped + d) : Vec3(c + d));
@@ -133,9 +134,9 @@ TEST(BruteForce, NonFinitePosesCollideForEveryChecker)
     for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
         const auto checker = makeChecker(name, s);
-        for (const RigidTransform &pose : {RigidTransform{Mat3::Identity(), Vec3(nan, 0, 0)},
-                                           RigidTransform{Mat3::Identity(), Vec3(0, -inf, 0)},
-                                           RigidTransform{nanRotation, Vec3(0, 0, 0)}})
+        for (const RigidTransform &pose :
+             {RigidTransform{Mat3::Identity(), Vec3(nan, 0, 0)}, RigidTransform{Mat3::Identity(), Vec3(0, -inf, 0)},
+              RigidTransform{nanRotation, Vec3(0, 0, 0)}})
         {
             EXPECT_TRUE(checker->collides(pose)) << name;
             EXPECT_EQ(checker->distance(pose), 0.0) << name;

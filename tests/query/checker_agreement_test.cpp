@@ -67,10 +67,26 @@ CollisionScene sceneOf(TriangleMesh robot, TriangleMesh environment)
 }
 }  // namespace
 
-TEST(CheckerAgreement, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); checkProblem(cfg, test::cases(10000)); }
-TEST(CheckerAgreement, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); checkProblem(cfg, test::cases(10000)); }
-TEST(CheckerAgreement, Alpha15) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg"); checkProblem(cfg, test::cases(10000)); }
-TEST(CheckerAgreement, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); checkProblem(cfg, test::cases(10000)); }
+TEST(CheckerAgreement, Cubicles)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
+    checkProblem(cfg, test::cases(10000));
+}
+TEST(CheckerAgreement, Twistycool)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg");
+    checkProblem(cfg, test::cases(10000));
+}
+TEST(CheckerAgreement, Alpha15)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/alpha-1.5.cfg");
+    checkProblem(cfg, test::cases(10000));
+}
+TEST(CheckerAgreement, MazePlanar)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg");
+    checkProblem(cfg, test::cases(10000));
+}
 TEST(CheckerAgreement, ProjectProblems)
 {
     checkProblem(test::sourcePath("problems/window_3d.cfg"), 3000);
@@ -131,8 +147,8 @@ TEST(CheckerAgreement, ExactTouchingCountsAsCollision)
         EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(touch, 0.5, 0.5)})) << name;  // faces touch
         EXPECT_FALSE(checker->collides({Mat3::Identity(), Vec3(gap, 0.5, 0.5)})) << name;
         EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(-0.5, -0.5, -0.5)})) << name;  // corner to corner
-        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(0.5, 0.5, 0.5)})) << name;    // coplanar faces overlap
-        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(NAN, 0, 0)})) << name;        // never "free" for NaN
+        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(0.5, 0.5, 0.5)})) << name;     // coplanar faces overlap
+        EXPECT_TRUE(checker->collides({Mat3::Identity(), Vec3(NAN, 0, 0)})) << name;         // never "free" for NaN
     }
 }
 
@@ -142,7 +158,8 @@ TEST(CheckerAgreement, ThinWallsAndExtremeScales)
     for (double scale : {1e-7, 1.0, 1e7})
     {
         TriangleMesh wall;
-        wall.vertices = {scale * Vec3(0, -1, -1), scale * Vec3(0, 1, -1), scale * Vec3(0, 1, 1), scale * Vec3(0, -1, 1)};
+        wall.vertices = {scale * Vec3(0, -1, -1), scale * Vec3(0, 1, -1), scale * Vec3(0, 1, 1),
+                         scale * Vec3(0, -1, 1)};
         wall.triangles = {{0, 1, 2}, {0, 2, 3}};
         const CollisionScene scene =
             sceneOf(test::boxMesh(scale * Vec3(-1, -0.01, -0.01), scale * Vec3(1, 0.01, 0.01)), wall);
@@ -177,10 +194,12 @@ TEST(CheckerAgreement, RobotInsideClosedObstacleIsACollision)
         if (name == "fcl")
             continue;  // FCL is registered surface-only
         EXPECT_TRUE(makeChecker(name, sceneOf(robot, closedBox))->collides(inside)) << name;
-        EXPECT_FALSE(makeChecker(name, sceneOf(robot, closedBox), ContactSemantics::SurfaceOnly)->collides(inside)) << name;
+        EXPECT_FALSE(makeChecker(name, sceneOf(robot, closedBox), ContactSemantics::SurfaceOnly)->collides(inside))
+            << name;
         EXPECT_FALSE(makeChecker(name, sceneOf(robot, openBox))->collides(inside)) << name;
         // The other way round: a closed robot swallowing a small obstacle.
-        EXPECT_TRUE(makeChecker(name, sceneOf(closedBox, robot))->collides({Mat3::Identity(), Vec3(-5, -5, -5)})) << name;
+        EXPECT_TRUE(makeChecker(name, sceneOf(closedBox, robot))->collides({Mat3::Identity(), Vec3(-5, -5, -5)}))
+            << name;
         EXPECT_EQ(makeChecker(name, sceneOf(robot, closedBox))->distance(inside), 0.0) << name;
     }
 }
@@ -205,7 +224,8 @@ TEST(Contacts, WitnessesLieOnBothPartsAndMatchBruteForce)
             for (const ContactPair &c : found)
             {
                 ASSERT_EQ(c.kind, ContactPair::Kind::Triangles);
-                const Vec3 a0 = pose.apply(robot.corner(c.robotElement, 0)), a1 = pose.apply(robot.corner(c.robotElement, 1)),
+                const Vec3 a0 = pose.apply(robot.corner(c.robotElement, 0)),
+                           a1 = pose.apply(robot.corner(c.robotElement, 1)),
                            a2 = pose.apply(robot.corner(c.robotElement, 2));
                 const Vec3 &b0 = env.corner(c.environmentElement, 0), &b1 = env.corner(c.environmentElement, 1),
                            &b2 = env.corner(c.environmentElement, 2);
@@ -219,7 +239,8 @@ TEST(Contacts, WitnessesLieOnBothPartsAndMatchBruteForce)
     }
     EXPECT_GT(checkedPoses, 100u);
     // Containment is reported as such under solid semantics.
-    const CollisionScene inside = sceneOf(test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1)), test::boxMesh(Vec3(0, 0, 0), Vec3(10, 10, 10)));
+    const CollisionScene inside =
+        sceneOf(test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1)), test::boxMesh(Vec3(0, 0, 0), Vec3(10, 10, 10)));
     const auto found = makeChecker("obb", inside)->contacts({Mat3::Identity(), Vec3(5, 5, 5)}, 10);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, ContactPair::Kind::Containment);

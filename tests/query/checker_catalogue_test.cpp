@@ -12,7 +12,8 @@ using namespace hcd;
 TEST(CheckerCatalogue, BuiltInListsTheCoreCheckersWithDescriptions)
 {
     const CheckerCatalogue catalogue = CheckerCatalogue::builtIn();
-    const std::vector<std::string> expected = {"obb", "ellipsoid", "hybrid", "hybrid-ellipsoid-first", "bruteforce", "lp"};
+    const std::vector<std::string> expected = {"obb",        "ellipsoid", "hybrid", "hybrid-ellipsoid-first",
+                                               "bruteforce", "lp"};
     EXPECT_EQ(catalogue.names(), expected);
     for (const CheckerEntry &e : catalogue.entries())
     {
@@ -62,7 +63,8 @@ TEST(CheckerCatalogue, ApproximateModeOnlyWhereSupported)
         }
         catch (const std::invalid_argument &e)
         {
-            EXPECT_NE(std::string(e.what()).find("has no approximate mode (checkers that have one: lp)"), std::string::npos)
+            EXPECT_NE(std::string(e.what()).find("has no approximate mode (checkers that have one: lp)"),
+                      std::string::npos)
                 << e.what();
         }
     }

@@ -41,8 +41,24 @@ void compareWithFcl(const std::string &cfg)
 }
 }  // namespace
 
-TEST(FclAgreement, Cubicles) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg"); compareWithFcl(cfg); }
-TEST(FclAgreement, Twistycool) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg"); compareWithFcl(cfg); }
-TEST(FclAgreement, MazePlanar) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg"); compareWithFcl(cfg); }
+TEST(FclAgreement, Cubicles)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
+    compareWithFcl(cfg);
+}
+TEST(FclAgreement, Twistycool)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg");
+    compareWithFcl(cfg);
+}
+TEST(FclAgreement, MazePlanar)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "2D/Maze_planar.cfg");
+    compareWithFcl(cfg);
+}
 TEST(FclAgreement, ProjectProblems) { compareWithFcl(test::sourcePath("problems/window_3d.cfg")); }
-TEST(FclAgreement, Home) { HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Home.cfg"); compareWithFcl(cfg); }
+TEST(FclAgreement, Home)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Home.cfg");
+    compareWithFcl(cfg);
+}

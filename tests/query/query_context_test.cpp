@@ -25,8 +25,8 @@ TEST(QueryContext, OneContextAcrossCheckersAndQueriesGivesTheOneOffAnswers)
 {
     const LoadedProblem problem = windowProblem();
     test::TestRandom rng(test::seeded(41));
-    const std::vector<RigidTransform> poses = problem.config.planar ? std::vector<RigidTransform>{}
-                                                                    : test::randomPoses(problem, 120, rng);
+    const std::vector<RigidTransform> poses =
+        problem.config.planar ? std::vector<RigidTransform>{} : test::randomPoses(problem, 120, rng);
     ASSERT_FALSE(poses.empty());
     std::vector<std::unique_ptr<CollisionChecker>> checkers;
     for (const char *name : {"obb", "ellipsoid", "lp", "bruteforce"})

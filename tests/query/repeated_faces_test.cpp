@@ -77,8 +77,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> trianglePairs(const std::ve
 }
 
 // Every checker on the doubled scene against the brute-force reference on the single one.
-void expectSameAnswers(const CollisionScene &single, const CollisionScene &twice, const std::vector<RigidTransform> &poses,
-                       std::size_t &colliding, std::size_t &free)
+void expectSameAnswers(const CollisionScene &single, const CollisionScene &twice,
+                       const std::vector<RigidTransform> &poses, std::size_t &colliding, std::size_t &free)
 {
     const auto reference = makeChecker("bruteforce", single);
     const auto referenceSurface = makeChecker("bruteforce", single, ContactSemantics::SurfaceOnly);
@@ -109,16 +109,18 @@ void expectSameAnswers(const CollisionScene &single, const CollisionScene &twice
             const auto found = surface->contacts(pose, 100000);
             const auto expected = referenceSurface->contacts(pose, 100000);
             ASSERT_EQ(found.size(), expected.size()) << name << " pose " << i;
-            EXPECT_EQ(trianglePairs(found), trianglePairs(singleSurface->contacts(pose, 100000))) << name << " pose " << i;
+            EXPECT_EQ(trianglePairs(found), trianglePairs(singleSurface->contacts(pose, 100000)))
+                << name << " pose " << i;
             // Contacts name triangles of the source (doubled) mesh, and those triangles do meet.
             for (const ContactPair &c : found)
             {
                 const TriangleMesh &r = *twice.robot, &e = *twice.environment;
                 ASSERT_LT(c.robotElement, r.triangleCount());
                 ASSERT_LT(c.environmentElement, e.triangleCount());
-                EXPECT_TRUE(trianglesIntersect(pose.apply(r.corner(c.robotElement, 0)), pose.apply(r.corner(c.robotElement, 1)),
-                                               pose.apply(r.corner(c.robotElement, 2)), e.corner(c.environmentElement, 0),
-                                               e.corner(c.environmentElement, 1), e.corner(c.environmentElement, 2)));
+                EXPECT_TRUE(
+                    trianglesIntersect(pose.apply(r.corner(c.robotElement, 0)), pose.apply(r.corner(c.robotElement, 1)),
+                                       pose.apply(r.corner(c.robotElement, 2)), e.corner(c.environmentElement, 0),
+                                       e.corner(c.environmentElement, 1), e.corner(c.environmentElement, 2)));
             }
         }
     }
@@ -163,9 +165,9 @@ TEST(RepeatedFaces, ClosednessAndComponentsUnchanged)
         EXPECT_EQ(after[c].closed, before[c].closed) << c;
         EXPECT_EQ(distinct[c].closed, before[c].closed) << c;
     }
-    EXPECT_TRUE(before[0].closed);    // the box
-    EXPECT_FALSE(before[1].closed);   // the sheet, doubled or not
-    EXPECT_FALSE(before[2].closed);   // the open box
+    EXPECT_TRUE(before[0].closed);   // the box
+    EXPECT_FALSE(before[1].closed);  // the sheet, doubled or not
+    EXPECT_FALSE(before[2].closed);  // the open box
 }
 
 TEST(RepeatedFaces, DoubledMeshesGiveTheSingleMeshAnswersOnRandomPoses)
@@ -209,10 +211,10 @@ TEST(RepeatedFaces, DoubledMeshesGiveTheSingleMeshAnswersOnTouchingPoses)
     const CollisionScene twice = sceneOf(doubled(robot), doubled(env, true));
     const double gap = std::nextafter(-0.5, -1.0);
     const std::vector<RigidTransform> poses = {
-        {Mat3::Identity(), Vec3(-0.5, 0.5, 0.5)}, {Mat3::Identity(), Vec3(gap, 0.5, 0.5)},
-        {Mat3::Identity(), Vec3(-0.5, -0.5, 0.5)}, {Mat3::Identity(), Vec3(-0.5, -0.5, -0.5)},
-        {Mat3::Identity(), Vec3(0.5, 0.5, 0.5)},  {Mat3::Identity(), Vec3(2.5, 0.5, 0.5)},
-        {Mat3::Identity(), Vec3(3.0, 0.5, 0.5)},  {Mat3::Identity(), Vec3(std::nextafter(2.5, 0.0), 0.5, 0.5)},
+        {Mat3::Identity(), Vec3(-0.5, 0.5, 0.5)},      {Mat3::Identity(), Vec3(gap, 0.5, 0.5)},
+        {Mat3::Identity(), Vec3(-0.5, -0.5, 0.5)},     {Mat3::Identity(), Vec3(-0.5, -0.5, -0.5)},
+        {Mat3::Identity(), Vec3(0.5, 0.5, 0.5)},       {Mat3::Identity(), Vec3(2.5, 0.5, 0.5)},
+        {Mat3::Identity(), Vec3(3.0, 0.5, 0.5)},       {Mat3::Identity(), Vec3(std::nextafter(2.5, 0.0), 0.5, 0.5)},
         {Mat3::Identity(), Vec3(0.5, 0.5, 0.5 + 1e-3)}};
     std::size_t colliding = 0, free = 0;
     expectSameAnswers(single, twice, poses, colliding, free);

@@ -113,7 +113,8 @@ TEST(SweptDistance, CertifiedMotionIntervalsAreFreeUnderDenseSampling)
             // A motion of a few units with a random turn, and a random interval [lo, hi] of it.
             const RigidTransform turn = RigidTransform::fromAxisAngle(
                 Vec3::Zero(), Vec3(step(motionRng), step(motionRng), step(motionRng)), 0.8 * unit(motionRng));
-            const RigidTransform b{turn.rotation * a.rotation, a.translation + Vec3(step(motionRng), step(motionRng), step(motionRng))};
+            const RigidTransform b{turn.rotation * a.rotation,
+                                   a.translation + Vec3(step(motionRng), step(motionRng), step(motionRng))};
             const double lo = 0.5 * unit(motionRng), hi = lo + 0.5 * unit(motionRng);
             const double half = 0.5 * (hi - lo);
             const double translationSlack = (b.translation - a.translation).norm() * half * (1.0 + 1e-9);

@@ -74,29 +74,29 @@ ShellResult runShell(const std::string &command);
 std::string writeTempFile(const std::string &name, const std::string &text);
 
 /// Skips the test with `message`, or fails it in CI where nothing may be skipped silently.
-#define HYBRIDCD_SKIP_OR_FAIL_IN_CI(message)                                                                  \
-    do                                                                                                        \
-    {                                                                                                         \
-        if (::hcd::test::inContinuousIntegration())                                                           \
-            FAIL() << message;                                                                                \
-        GTEST_SKIP() << message;                                                                              \
+#define HYBRIDCD_SKIP_OR_FAIL_IN_CI(message)                                                                           \
+    do                                                                                                                 \
+    {                                                                                                                  \
+        if (::hcd::test::inContinuousIntegration())                                                                    \
+            FAIL() << message;                                                                                         \
+        GTEST_SKIP() << message;                                                                                       \
     } while (false)
 
 /// Binds `var` to the folder of OMPL.app's problems; skips (fails in CI) when it is absent.
-#define HYBRIDCD_REQUIRE_OMPLAPP_ROOT(var)                                                                    \
-    const std::string var = ::hcd::test::omplappResources();                                                 \
-    if (var.empty())                                                                                          \
+#define HYBRIDCD_REQUIRE_OMPLAPP_ROOT(var)                                                                             \
+    const std::string var = ::hcd::test::omplappResources();                                                           \
+    if (var.empty())                                                                                                   \
     HYBRIDCD_SKIP_OR_FAIL_IN_CI("OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES")
 
 /// Message for a missing OMPL.app resource.
-#define HYBRIDCD_OMPLAPP_MISSING(relative)                                                                    \
-    "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES to the folder holding 2D/ and 3D/ "        \
+#define HYBRIDCD_OMPLAPP_MISSING(relative)                                                                             \
+    "OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES to the folder holding 2D/ and 3D/ "                  \
     "(looked for " relative ")"
 
 /// Skips the test when an OMPL.app resource is absent, or fails it in CI.
-#define HYBRIDCD_REQUIRE_OMPLAPP(var, relative)                                                               \
-    const auto var##_opt = ::hcd::test::omplappProblem(relative);                                             \
-    if (!var##_opt)                                                                                           \
-    HYBRIDCD_SKIP_OR_FAIL_IN_CI(HYBRIDCD_OMPLAPP_MISSING(relative));                                          \
+#define HYBRIDCD_REQUIRE_OMPLAPP(var, relative)                                                                        \
+    const auto var##_opt = ::hcd::test::omplappProblem(relative);                                                      \
+    if (!var##_opt)                                                                                                    \
+        HYBRIDCD_SKIP_OR_FAIL_IN_CI(HYBRIDCD_OMPLAPP_MISSING(relative));                                               \
     const std::string var = *var##_opt
 }  // namespace hcd::test

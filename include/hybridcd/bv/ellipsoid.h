@@ -17,9 +17,9 @@ namespace hcd
 struct Ellipsoid
 {
     Vec3 center = Vec3::Zero();
-    Mat3 shape = Mat3::Identity();     ///< A
-    Mat3 axes = Mat3::Identity();      ///< orthonormal columns: principal directions of A
-    Vec3 semiAxes = Vec3::Ones();      ///< semi-axis length along each column of `axes` (1/sqrt of A's eigenvalues)
+    Mat3 shape = Mat3::Identity();  ///< A
+    Mat3 axes = Mat3::Identity();   ///< orthonormal columns: principal directions of A
+    Vec3 semiAxes = Vec3::Ones();   ///< semi-axis length along each column of `axes` (1/sqrt of A's eigenvalues)
 
     /// From a centre and a shape matrix A (precondition: symmetric positive definite; only its symmetric
     /// part is used). Fills the principal form by an eigen-decomposition.
@@ -42,7 +42,10 @@ struct Ellipsoid
 
     /// max over x in E of direction . (x - c) = sqrt(n^T A^{-1} n): the support function less n . c.
     /// `direction` need not be unit length (the value scales with it).
-    double supportRadius(const Vec3 &direction) const { return semiAxes.cwiseProduct(axes.transpose() * direction).norm(); }
+    double supportRadius(const Vec3 &direction) const
+    {
+        return semiAxes.cwiseProduct(axes.transpose() * direction).norm();
+    }
 
     /// max over x in E of direction . x = direction . c + supportRadius(direction).
     double support(const Vec3 &direction) const { return direction.dot(center) + supportRadius(direction); }

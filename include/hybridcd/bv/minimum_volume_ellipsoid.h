@@ -38,10 +38,10 @@ struct MveeResult
     /// Factor (>= 1) by which Khachiyan's shape S^{-1}/d was divided so that every point is inside
     /// (semi-axes grow by its square root); 1 + optimalityGap up to the containment margins.
     double inflation = 1.0;
-    int iterations = 0;            ///< Frank–Wolfe plus away steps taken
-    std::size_t candidates = 0;    ///< points the iteration started from (hull vertices, or all points)
-    std::size_t removed = 0;       ///< candidates eliminated by cardinality reduction
-    int dimension = 3;             ///< dimension of the points' affine hull as detected (0 to 3)
+    int iterations = 0;          ///< Frank–Wolfe plus away steps taken
+    std::size_t candidates = 0;  ///< points the iteration started from (hull vertices, or all points)
+    std::size_t removed = 0;     ///< candidates eliminated by cardinality reduction
+    int dimension = 3;           ///< dimension of the points' affine hull as detected (0 to 3)
 };
 
 /// Minimum-volume enclosing ellipsoid of `points` (any count >= 1; all coordinates finite, else

@@ -29,7 +29,10 @@ struct Obb
     bool contains(const Vec3 &p) const;
 
     /// The same box mapped by `pose` (its extents are unchanged).
-    Obb transformed(const RigidTransform &pose) const { return {pose.apply(center), pose.rotation * axes, halfExtents}; }
+    Obb transformed(const RigidTransform &pose) const
+    {
+        return {pose.apply(center), pose.rotation * axes, halfExtents};
+    }
 };
 
 /// Separating-axis test (15 axes) between box `a` mapped into world by `worldFromA` and box `b`

@@ -29,7 +29,7 @@ public:
     struct Node
     {
         Volume volume;
-        double radius = 0.0;  ///< circumscribed sphere about Traits::center(volume), for a cheap first reject
+        double radius = 0.0;           ///< circumscribed sphere about Traits::center(volume), for a cheap first reject
         std::int32_t firstChild = -1;  ///< index of the left child (right = +1), -1 for a leaf
         std::uint32_t firstTriangle = 0;  ///< first index into triangleOrder() of the subtree's run
         std::uint32_t triangleCount = 0;
@@ -39,7 +39,8 @@ public:
 
     /// Builds over `mesh` (kept alive by the tree). Leaves hold at most `maxLeafTriangles`.
     explicit VolumeTree(std::shared_ptr<const TriangleMesh> mesh, unsigned maxLeafTriangles = 1)
-        : mesh_(std::move(mesh)), maxLeafTriangles_(std::max(1u, maxLeafTriangles))
+        : mesh_(std::move(mesh)),
+          maxLeafTriangles_(std::max(1u, maxLeafTriangles))
     {
         const auto start = std::chrono::steady_clock::now();
         const std::size_t n = mesh_->triangleCount();
@@ -64,7 +65,10 @@ public:
     const std::vector<std::uint32_t> &triangleOrder() const { return order_; }
     std::size_t depth() const { return depth_; }
     double buildSeconds() const { return buildSeconds_; }
-    std::size_t memoryBytes() const { return nodes_.capacity() * sizeof(Node) + order_.capacity() * sizeof(std::uint32_t); }
+    std::size_t memoryBytes() const
+    {
+        return nodes_.capacity() * sizeof(Node) + order_.capacity() * sizeof(std::uint32_t);
+    }
 
 private:
     void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::size_t level,

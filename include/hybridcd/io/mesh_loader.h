@@ -53,7 +53,7 @@ struct LoadedMesh
 {
     /// Never null (an empty mesh until loaded); immutable, so a CollisionScene can share it.
     std::shared_ptr<const TriangleMesh> mesh = std::make_shared<const TriangleMesh>();
-    Vec3 centeringShift = Vec3::Zero();  ///< what was subtracted from every vertex
+    Vec3 centeringShift = Vec3::Zero();   ///< what was subtracted from every vertex
     std::size_t sourceTriangles = 0;      ///< three-index faces found in the file
     std::size_t skippedNonTriangles = 0;  ///< points and lines, ignored
     std::size_t droppedDegenerate = 0;    ///< zero-area triangles, dropped after welding

@@ -22,28 +22,28 @@ struct ConfigPose
 
 struct BenchmarkSettings
 {
-    double timeLimit = 10.0;     ///< seconds per run
-    double memoryLimit = 1000.0; ///< MB per run
+    double timeLimit = 10.0;      ///< seconds per run
+    double memoryLimit = 1000.0;  ///< MB per run
     unsigned runCount = 10;
 };
 
 struct ProblemConfig
 {
-    std::string path;        ///< the .cfg file as given
-    std::string name;        ///< [problem] name, or the file stem
-    std::string robotMesh;   ///< resolved relative to the .cfg's folder
-    std::string worldMesh;   ///< resolved; empty when the problem has no environment
-    int robotLine = 0;       ///< lines of the robot/world keys, for error messages
+    std::string path;       ///< the .cfg file as given
+    std::string name;       ///< [problem] name, or the file stem
+    std::string robotMesh;  ///< resolved relative to the .cfg's folder
+    std::string worldMesh;  ///< resolved; empty when the problem has no environment
+    int robotLine = 0;      ///< lines of the robot/world keys, for error messages
     int worldLine = 0;
-    int startLine = 0;       ///< lines of start.x and goal.x, for messages about the start or goal
+    int startLine = 0;  ///< lines of start.x and goal.x, for messages about the start or goal
     int goalLine = 0;
-    bool planar = false;     ///< SE2 when the start has no z, as OMPL.app decides
-    std::string control;     ///< e.g. "dynamic_car" (kinodynamic problems; planned geometrically here)
+    bool planar = false;  ///< SE2 when the start has no z, as OMPL.app decides
+    std::string control;  ///< e.g. "dynamic_car" (kinodynamic problems; planned geometrically here)
     ConfigPose start, goal;
     std::optional<std::pair<double, double>> volumeX, volumeY, volumeZ;  ///< (min, max) when given
-    std::string objective;   ///< "length", "max min clearance", "mechanical work" or empty
+    std::string objective;  ///< "length", "max min clearance", "mechanical work" or empty
     std::optional<double> objectiveThreshold;
-    std::string sampler;     ///< valid-state sampler: uniform, gaussian, obstacle_based, max_clearance, bridge_test
+    std::string sampler;  ///< valid-state sampler: uniform, gaussian, obstacle_based, max_clearance, bridge_test
     BenchmarkSettings benchmark;
     std::vector<PlannerRequest> planners;  ///< in file order
     /// "FILE:LINE: ..." notes on keys that were ignored (unknown to OMPL.app and hybridcd); the

@@ -23,14 +23,14 @@ namespace hcd
 {
 struct ConvexDecomposition
 {
-    std::vector<ConvexPiece> pieces;   ///< one per leaf, in the mesh's own frame
-    std::vector<double> concavity;     ///< per piece, in mesh units: how far the hull surface stands out
+    std::vector<ConvexPiece> pieces;  ///< one per leaf, in the mesh's own frame
+    std::vector<double> concavity;    ///< per piece, in mesh units: how far the hull surface stands out
     /// Per piece: an upper bound on the distance from ANY point of the hull (surface or inside) to
     /// the covered triangles. Two pieces whose hulls meet have triangles within the sum of their
     /// bounds of each other, which is what the LP checker's approximate mode relies on.
     std::vector<double> approximationBound;
     std::vector<std::int32_t> pieceOfNode;  ///< tree node -> piece index, -1 for internal nodes
-    double seconds = 0.0;              ///< time to build the hulls and measure concavity
+    double seconds = 0.0;                   ///< time to build the hulls and measure concavity
 };
 
 /// One cluster of triangles wrapped into one piece: `count` entries of a triangle order, from
@@ -49,7 +49,8 @@ ConvexDecomposition decomposeClusters(const TriangleMesh &mesh, const std::vecto
 
 /// A point in both of two intersecting triangles (within 1e-9 relative), from the LP on them as
 /// flat convex pieces: the witness of a triangle contact.
-Vec3 triangleContactPoint(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2);
+Vec3 triangleContactPoint(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                          const Vec3 &b2);
 
 /// The facets of a hull as polygons (vertices in order around each facet).
 std::vector<std::vector<Vec3>> facetPolygons(const ConvexPiece &hull);
@@ -61,7 +62,8 @@ double hullVolume(const ConvexPiece &hull);
 /// distance over a grid of interior points and the facet samples, plus the grid spacing (the
 /// distance function is 1-Lipschitz, and every hull point is within one spacing of a sample).
 /// Exactly 0 for a piece that is the hull of a single triangle.
-double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangles);
+double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
+                          const std::vector<std::uint32_t> &triangles);
 
 /// Largest distance from points on the hull's facets (their corners, centroids and a grid of
 /// `samplesPerEdge` x `samplesPerEdge` barycentric points) to the nearest of `triangles` of `mesh`.

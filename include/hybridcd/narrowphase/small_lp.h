@@ -67,14 +67,8 @@ enum class LpStatus
 };
 
 /// The basis entries that stand for the box: x_j >= lower_j and x_j <= upper_j.
-constexpr int lpLowerBoundId(int j)
-{
-    return -1 - 2 * j;
-}
-constexpr int lpUpperBoundId(int j)
-{
-    return -2 - 2 * j;
-}
+constexpr int lpLowerBoundId(int j) { return -1 - 2 * j; }
+constexpr int lpUpperBoundId(int j) { return -2 - 2 * j; }
 
 /// Result of `solveSmallLp`.
 template <int D>
@@ -118,11 +112,10 @@ LpSolution<D> solveSmallLp(const std::vector<Halfspace<D>> &constraints, const E
 }
 
 #define HYBRIDCD_DECLARE_SMALL_LP(D)                                                                                   \
-    extern template LpSolution<D> solveSmallLp<D>(LpWorkspace &, const std::vector<Halfspace<D>> &,                  \
-                                                  const Eigen::Matrix<double, D, 1> &,                                \
-                                                  const Eigen::Matrix<double, D, 1> &,                                \
-                                                  const Eigen::Matrix<double, D, 1> &, double,                        \
-                                                  const Eigen::Matrix<double, D, 1> *, std::uint64_t);
+    extern template LpSolution<D> solveSmallLp<D>(                                                                     \
+        LpWorkspace &, const std::vector<Halfspace<D>> &, const Eigen::Matrix<double, D, 1> &,                         \
+        const Eigen::Matrix<double, D, 1> &, const Eigen::Matrix<double, D, 1> &, double,                              \
+        const Eigen::Matrix<double, D, 1> *, std::uint64_t);
 HYBRIDCD_DECLARE_SMALL_LP(1)
 HYBRIDCD_DECLARE_SMALL_LP(2)
 HYBRIDCD_DECLARE_SMALL_LP(3)

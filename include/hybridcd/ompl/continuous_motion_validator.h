@@ -36,8 +36,9 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator
 public:
     /// `robotRadius` bounds |p| over robot points p in the robot frame; `sceneScale` sets the
     /// smallest clearance certified (1e-7 of it). Queries go through `validity` so they are counted.
-    ContinuousMotionValidator(const ompl::base::SpaceInformationPtr &si, std::shared_ptr<const StateValidityChecker> validity,
-                              double robotRadius, double sceneScale);
+    ContinuousMotionValidator(const ompl::base::SpaceInformationPtr &si,
+                              std::shared_ptr<const StateValidityChecker> validity, double robotRadius,
+                              double sceneScale);
 
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const override;
 

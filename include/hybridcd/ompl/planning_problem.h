@@ -51,7 +51,8 @@ PlanningProblem makePlanningProblem(const LoadedProblem &problem, std::shared_pt
 /// (also stored in planning.continuousValidator);
 /// for Discrete, OMPL's DiscreteMotionValidator. Used to switch checkers between benchmark runs.
 std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, const LoadedProblem &problem,
-                                                     std::shared_ptr<const CollisionChecker> checker, MotionCheck motion);
+                                                     std::shared_ptr<const CollisionChecker> checker,
+                                                     MotionCheck motion);
 
 /// The state of a .cfg pose (3D poses are axis-angle, planar ones yaw).
 void configPoseToState(const ConfigPose &pose, bool planar, ompl::base::State *state);

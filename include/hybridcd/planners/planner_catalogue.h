@@ -8,15 +8,17 @@
 #include <utility>
 #include <vector>
 
-namespace hcd {
+namespace hcd
+{
 
 /// Lowercase names of every planner the catalogue can build, sorted.
 std::vector<std::string> plannerNames();
 
 /// Builds the planner; applies displayName (Planner::setName) and every parameter through OMPL's ParamSet
-/// (planner->params().hasParam / setParam). Throws std::invalid_argument: for an unknown type, the message lists all valid
-/// names; for an unknown parameter, the message names the planner and lists that planner's valid parameter names
-/// (from params().getParamNames()); for a value OMPL rejects (setParam returns false), it names the parameter and the value.
+/// (planner->params().hasParam / setParam). Throws std::invalid_argument: for an unknown type, the message lists all
+/// valid names; for an unknown parameter, the message names the planner and lists that planner's valid parameter names
+/// (from params().getParamNames()); for a value OMPL rejects (setParam returns false), it names the parameter and the
+/// value.
 ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si);
 
 }  // namespace hcd

@@ -29,7 +29,7 @@ private:
         std::uint32_t triangle;
     };
     DistinctFaceMesh robotFaces_, environmentFaces_;
-    CollisionScene scene_;  ///< over the meshes without repeated faces
+    CollisionScene scene_;                       ///< over the meshes without repeated faces
     std::vector<TriangleBox> environmentBoxes_;  ///< sorted by min.x
 };
 }  // namespace hcd

@@ -23,16 +23,15 @@ namespace hcd
 struct PenetrationEstimate
 {
     bool colliding = false;
-    double depth = 0.0;           ///< deepest pairwise penetration (0 when free or only contained)
-    Vec3 direction = Vec3::Zero();  ///< unit world direction to move the robot along to reduce it
+    double depth = 0.0;                      ///< deepest pairwise penetration (0 when free or only contained)
+    Vec3 direction = Vec3::Zero();           ///< unit world direction to move the robot along to reduce it
     std::optional<RigidTransform> freePose;  ///< a verified collision-free pose nearby, when found
 };
 
 /// Estimates the penetration at `worldFromRobot` and searches (at most `maxSteps` push-outs) for a
 /// free pose by translation. For a free pose: colliding = false and freePose = the pose itself.
 PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
-                                        const RigidTransform &worldFromRobot, QueryContext &context,
-                                        int maxSteps = 20);
+                                        const RigidTransform &worldFromRobot, QueryContext &context, int maxSteps = 20);
 /// The same with a fresh context (allocates; for one-off queries).
 PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
                                         const RigidTransform &worldFromRobot, int maxSteps = 20);

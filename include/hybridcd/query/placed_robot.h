@@ -28,7 +28,10 @@ class PlacedRobot
 {
 public:
     PlacedRobot(const VolumeTree<Volume> &tree, const RigidTransform &worldFromRobot, QueryContext &context)
-        : tree_(tree), pose_(worldFromRobot), s_(context.scratch<Scratch>()), query_(++s_.query)
+        : tree_(tree),
+          pose_(worldFromRobot),
+          s_(context.scratch<Scratch>()),
+          query_(++s_.query)
     {
         s_.volumes.reserve(tree.nodes().size());
         s_.triangles.reserve(tree.mesh().triangleCount());
@@ -37,9 +40,8 @@ public:
     /// World-frame volume of robot tree node `node`.
     const Volume &volume(std::uint32_t node)
     {
-        return s_.volumes.get(node, query_, [&](Volume &v) {
-            v = VolumeTraits<Volume>::transformed(tree_.nodes()[node].volume, pose_);
-        });
+        return s_.volumes.get(
+            node, query_, [&](Volume &v) { v = VolumeTraits<Volume>::transformed(tree_.nodes()[node].volume, pose_); });
     }
 
     /// World-frame corners of robot mesh triangle `t`, mapped by RigidTransform::apply (exactly as

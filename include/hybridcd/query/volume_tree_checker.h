@@ -74,15 +74,15 @@ private:
     };
 
     DistinctFaceMesh robotFaces_, environmentFaces_;  ///< the scene's meshes without repeated faces
-    CollisionScene scene_;                           ///< over those meshes
+    CollisionScene scene_;                            ///< over those meshes
     std::string name_;
     VolumeTree<Volume> robotTree_;
     VolumeTree<Volume> environmentTree_;
     double robotRadius_ = 0.0;
     double environmentMagnitude_ = 0.0;
     std::vector<TriangleBounds> environmentTriangleBounds_;  ///< per mesh triangle, for a cheap exact reject
-    std::vector<double> robotNodeReach_;      ///< per robot node: max |p| over its volume (robot frame)
-    std::vector<double> robotTriangleReach_;  ///< per robot triangle: max |corner|
+    std::vector<double> robotNodeReach_;                     ///< per robot node: max |p| over its volume (robot frame)
+    std::vector<double> robotTriangleReach_;                 ///< per robot triangle: max |corner|
     std::optional<PieceStage> pieceStage_;
     ConvexDecomposition robotPieces_, environmentPieces_;
 };
