@@ -283,17 +283,20 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     const bool keyword = first.find("off") != std::string::npos;
     if (kind != "off" && !keyword)
         return;
-    std::size_t at = 0;
-    if (keyword)
-        at = first.find("noff") != std::string::npos ? 2 : 1;
-    for (std::size_t k = at; k < std::min(tokens.size(), at + 2); ++k)
+    // The dimension prefix is a lower-case 'n' right before "OFF" ("NOFF" is the normals flag):
+    // then the dimension comes first, and is checked with the counts (it is a small number).
+    const bool dimension = keyword && std::string_view(tokens.front()).find("nOFF") != std::string_view::npos;
+    const std::size_t at = keyword ? 1 : 0;
+    for (std::size_t k = at; k < std::min(tokens.size(), at + (dimension ? 3 : 2)); ++k)
     {
         const std::uintmax_t count = leadingCount(tokens[k]);
         if (count > data.size())
             throw InputError(name, 0,
                              "malformed OFF file: its header announces " + std::string(tokens[k]) + " " +
-                                 (k == at ? "vertices" : "faces") + ", more than its " + std::to_string(data.size()) +
-                                 " bytes can hold");
+                                 (dimension && k == at            ? "dimensions"
+                                  : k == at + (dimension ? 1 : 0) ? "vertices"
+                                                                  : "faces") +
+                                 ", more than its " + std::to_string(data.size()) + " bytes can hold");
     }
 }
 
