@@ -133,9 +133,11 @@ std::uintmax_t leadingCount(std::string_view token)
     return value;
 }
 
-// True when some line of `data` starts with the word "end_header" (leading blanks allowed), as
-// the PLY reader needs it: the word glued to the end of another line does not end the header.
-bool hasHeaderEndLine(std::string_view data)
+// Why the PLY header of `data` cannot be read safely (empty when it can). assimp 5.2's PLY reader
+// only stops on a line that is exactly "end_header", and loops without end or reads past the data
+// on headers it does not expect: so the header must be lines of printable text ending in such a
+// line (found by fuzzing: tests/fuzz_corpus/mesh/regression_ply_*).
+std::string plyHeaderProblem(std::string_view data)
 {
     constexpr std::string_view word = "end_header";
     for (std::size_t start = 0; start < data.size();)
@@ -144,17 +146,19 @@ bool hasHeaderEndLine(std::string_view data)
         if (end == std::string_view::npos)
             end = data.size();
         std::string_view line = data.substr(start, end - start);
-        const std::size_t text = line.find_first_not_of(" \t");
-        if (text != std::string_view::npos)
+        for (char c : line)
         {
-            line.remove_prefix(text);
-            if (line.substr(0, word.size()) == word &&
-                (line.size() == word.size() || std::isspace(static_cast<unsigned char>(line[word.size()]))))
-                return true;
+            const auto u = static_cast<unsigned char>(c);
+            if ((u < 0x20 && c != '\t' && c != '\r') || u > 0x7e)
+                return "its header holds a byte that is not printable text (code " + std::to_string(int(u)) + ")";
         }
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
+            line.remove_suffix(1);
+        if (line == word)
+            return {};
         start = end + 1;
     }
-    return false;
+    return "its header has no end_header line";
 }
 
 // The attributes of every "<..._array" element of COLLADA data (float_array, int_array, ...),
@@ -222,9 +226,8 @@ std::optional<std::string_view> attributeValue(std::string_view attributes, std:
 
 // Refuses, before assimp sees them, data that assimp 5.2's readers cannot survive (each found by
 // fuzzing; `format` is the file's extension or the buffer's hint):
-// - PLY data without an "end_header" line: the PLY reader keeps asking for the next line past the
-//   end of the data and never returns (tests/fuzz_corpus/mesh/regression_ply_no_end_header.ply,
-//   and regression_ply_glued_end_header.ply, where the word ends another line).
+// - PLY data without an "end_header" line, or with a header that is not printable text (see
+//   plyHeaderProblem): the PLY reader then never returns.
 // - COLLADA data with array elements that have no count, or a count beyond the data (below).
 // - OFF data whose header announces more vertices or faces than its bytes can hold: the OFF reader
 //   allocates every announced face before reading one, and billions of them exhaust memory
@@ -237,8 +240,9 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     const std::string first = tokens.empty() ? std::string() : lowercase(tokens.front());
 
     const bool ply = kind == "ply" || first.rfind("ply", 0) == 0;
-    if (ply && !hasHeaderEndLine(data))
-        throw InputError(name, 0, "malformed PLY file: its header has no end_header line");
+    if (ply)
+        if (const std::string problem = plyHeaderProblem(data); !problem.empty())
+            throw InputError(name, 0, "malformed PLY file: " + problem);
 
     // COLLADA: assimp 5.2's reader dereferences a null pointer on an array element without a
     // count (tests/fuzz_corpus/mesh/regression_collada_array_without_count.dae), and a count is

@@ -8,6 +8,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <utility>
 
 #include <sstream>
 
@@ -182,6 +183,24 @@ TEST(MeshLoader, PlyWithoutHeaderEndIsAnErrorNotAHang)
     std::string glued = text;
     glued.replace(glued.find("vertex_indices\nen 0\nvd_header"), 29, "vertex_indicesend_header");
     EXPECT_THROW(loadMeshFromMemory(glued, "ply", MeshRole::Environment, "glued.ply"), InputError);
+    // So does a header with bytes that are not text, or an end_header line ended by another control
+    // character (found by fuzzing, tests/fuzz_corpus/mesh/regression_ply_header_control_bytes.ply).
+    std::string fixedHeader = text;
+    fixedHeader.replace(fixedHeader.find("en 0\nvd_header"), 14, "end_header");
+    for (const auto &[from, to] :
+         {std::pair<std::string, std::string>{"ascii 1.0\n", std::string("ascii 1.0\x03\0\n", 12)},
+          {"end_header\n", "end_header\x0b"},
+          {"float x", "flo\xe9t x"}})
+    {
+        std::string broken = fixedHeader;
+        broken.replace(broken.find(from), from.size(), to);
+        EXPECT_THROW(loadMeshFromMemory(broken, "ply", MeshRole::Environment, "broken.ply"), InputError) << to;
+    }
+    // Windows line ends and trailing blanks are text.
+    std::string crlf = fixedHeader;
+    for (std::size_t at = crlf.find('\n'); at != std::string::npos; at = crlf.find('\n', at + 2))
+        crlf.replace(at, 1, "\r\n");
+    EXPECT_EQ(loadMeshFromMemory(crlf, "ply", MeshRole::Environment, "crlf.ply").mesh->triangleCount(), 1u);
     // With the line, the same triangle loads.
     std::string fixed = text;
     fixed.replace(fixed.find("en 0\nvd_header"), 14, "end_header");
