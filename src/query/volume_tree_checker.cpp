@@ -46,6 +46,48 @@ private:
     std::uint64_t query_;
     RigidTransform pose_;
 };
+
+// Coherence across queries (the seed's sections 4.3-4.5, Lin-Canny and I-COLLIDE): the triangle
+// pair that decided a checker's last "yes" in a context, per query kind (contact, or proximity).
+// Neighbouring queries, such as the states of one motion or a planner's successive extensions,
+// often meet at the same pair, and trying it first costs one bounds test when it misses.
+struct WitnessPair
+{
+    bool valid = false;
+    std::uint32_t robot = 0, environment = 0;
+};
+
+class WitnessCache
+{
+public:
+    WitnessPair &of(const void *checker, bool proximity)
+    {
+        for (Entry &e : entries_)
+            if (e.checker == checker && e.proximity == proximity)
+                return e.pair;
+        // A handful of checkers per context at most; beyond that the oldest entry is reused.
+        const Entry fresh{checker, proximity, {}};
+        if (entries_.size() < kEntries)
+        {
+            entries_.push_back(fresh);
+            return entries_.back().pair;
+        }
+        Entry &reused = entries_[next_++ % kEntries];
+        reused = fresh;
+        return reused.pair;
+    }
+
+private:
+    struct Entry
+    {
+        const void *checker;
+        bool proximity;
+        WitnessPair pair;
+    };
+    static constexpr std::size_t kEntries = 16;
+    std::vector<Entry> entries_;
+    std::size_t next_ = 0;
+};
 }  // namespace
 
 template <class Volume>
@@ -133,6 +175,38 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
     PlacedPieces placedPieces(worldFromRobot, context);
 
     std::uint64_t boxTests = 0, triangleTests = 0, pieceTests = 0;
+    // Whether robot triangle rt and environment triangle et touch (collision) or come within the
+    // slack (proximity): an exact axis-aligned reject first, then the exact test.
+    const auto trianglesWithin = [&](std::uint32_t rt, std::uint32_t et) {
+        const PlacedTriangle &a = placed.triangle(rt);
+        const double triangleDelta = slack.at(robotTriangleReach_[rt]);
+        // Exact comparisons on coordinates need no tolerance; proximity adds its slack.
+        const double boundsSlack = proximity ? triangleDelta * (1.0 + 1e-9) + tolerance : 0.0;
+        const TriangleBounds &eb = environmentTriangleBounds_[et];
+        if ((a.min.array() > eb.max.array() + boundsSlack).any() ||
+            (eb.min.array() > a.max.array() + boundsSlack).any())
+            return false;
+        ++triangleTests;
+        const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
+        return !proximity ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
+                          : triangleDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2) <=
+                                triangleDelta * (1.0 + 1e-9) + tolerance;
+    };
+    const auto record = [&] {
+        context.stats.boundingVolumeTests += boxTests;
+        context.stats.primitiveTests += triangleTests + pieceTests;
+    };
+
+    // The last deciding pair first (not when listing contacts). Checked against this checker's
+    // meshes, since a context may outlive a checker whose address is reused.
+    WitnessPair *witness = found ? nullptr : &context.scratch<WitnessCache>().of(this, proximity);
+    if (witness && witness->valid && witness->robot < scene_.robot->triangleCount() &&
+        witness->environment < env.triangleCount() && trianglesWithin(witness->robot, witness->environment))
+    {
+        record();
+        return true;
+    }
+
     bool hit = false;
     TraversalStack stack;
     stack.push({0, 0});
@@ -180,33 +254,23 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             for (std::uint32_t i = 0; i < rn.triangleCount && !hit; ++i)
             {
                 const std::uint32_t rt = robotTree_.triangleOrder()[rn.firstTriangle + i];
-                const PlacedTriangle &a = placed.triangle(rt);
-                const double triangleDelta = slack.at(robotTriangleReach_[rt]);
-                // Exact comparisons on coordinates need no tolerance; proximity adds its slack.
-                const double boundsSlack = proximity ? triangleDelta * (1.0 + 1e-9) + tolerance : 0.0;
                 for (std::uint32_t j = 0; j < en.triangleCount; ++j)
                 {
                     const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
-                    const TriangleBounds &eb = environmentTriangleBounds_[et];
-                    if ((a.min.array() > eb.max.array() + boundsSlack).any() ||
-                        (eb.min.array() > a.max.array() + boundsSlack).any())
+                    if (!trianglesWithin(rt, et))
                         continue;
-                    ++triangleTests;
-                    const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
-                    if (!proximity ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
-                                   : triangleDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2) <=
-                                         triangleDelta * (1.0 + 1e-9) + tolerance)
+                    if (!found)
                     {
-                        if (!found)
-                        {
-                            hit = true;
-                            break;
-                        }
-                        found->push_back({ContactPair::Kind::Triangles, rt, et,
-                                          triangleContactPoint(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)});
-                        if ((hit = found->size() >= limit))
-                            break;
+                        hit = true;
+                        *witness = {true, rt, et};
+                        break;
                     }
+                    const PlacedTriangle &a = placed.triangle(rt);
+                    found->push_back({ContactPair::Kind::Triangles, rt, et,
+                                      triangleContactPoint(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
+                                                           env.corner(et, 1), env.corner(et, 2))});
+                    if ((hit = found->size() >= limit))
+                        break;
                 }
             }
             continue;
@@ -224,8 +288,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             stack.push({pair.robot, std::uint32_t(en.firstChild)});
         }
     }
-    context.stats.boundingVolumeTests += boxTests;
-    context.stats.primitiveTests += triangleTests + pieceTests;
+    record();
     return hit;
 }
 

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <set>
 #include <thread>
 
@@ -56,22 +57,60 @@ TEST(QueryContext, OneContextAcrossCheckersAndQueriesGivesTheOneOffAnswers)
     EXPECT_GT(shared.stats.primitiveTests + shared.stats.boundingVolumeTests, 0u);
 }
 
-// The context's counters add up what the one-off form reports through QueryStats.
+// A fresh context's counters are what the one-off form reports through QueryStats.
 TEST(QueryContext, CountersMatchTheOneOffStats)
 {
     const LoadedProblem problem = windowProblem();
     const auto checker = makeChecker("obb", problem.scene);
     test::TestRandom rng(test::seeded(42));
-    QueryContext context;
-    QueryStats oneOff;
+    QueryStats fresh, oneOff;
     for (const RigidTransform &pose : test::randomPoses(problem, 50, rng))
     {
+        QueryContext context;
         checker->collides(pose, context);
+        fresh.boundingVolumeTests += context.stats.boundingVolumeTests;
+        fresh.primitiveTests += context.stats.primitiveTests;
         checker->collides(pose, &oneOff);
     }
-    EXPECT_EQ(context.stats.boundingVolumeTests, oneOff.boundingVolumeTests);
-    EXPECT_EQ(context.stats.primitiveTests, oneOff.primitiveTests);
+    EXPECT_EQ(fresh.boundingVolumeTests, oneOff.boundingVolumeTests);
+    EXPECT_EQ(fresh.primitiveTests, oneOff.primitiveTests);
     EXPECT_GT(oneOff.boundingVolumeTests, 0u);
+}
+
+// Coherence: the pair that decided the last "yes" is tried first. Along a motion that ends in
+// contact, the states after the first contact mostly collide at the same pair, so a context that
+// carries it over does far fewer volume tests, with the same answers as fresh contexts.
+TEST(QueryContext, TheLastContactPairIsTriedFirst)
+{
+    const LoadedProblem problem = windowProblem();
+    const auto checker = makeChecker("obb", problem.scene, ContactSemantics::SurfaceOnly);
+    const auto reference = makeChecker("bruteforce", problem.scene, ContactSemantics::SurfaceOnly);
+    test::TestRandom rng(test::seeded(44));
+    std::size_t colliding = 0;
+    std::uint64_t carried = 0, fresh = 0;
+    QueryContext context;
+    for (const RigidTransform &a : test::randomPoses(problem, 40, rng))
+    {
+        // A short straight motion from each random pose, 50 states, same orientation.
+        const Vec3 step = Vec3(0.02, -0.01, 0.015);
+        for (int k = 0; k < 50; ++k)
+        {
+            RigidTransform pose = a;
+            pose.translation += double(k) * step;
+            const std::uint64_t before = context.stats.boundingVolumeTests;
+            const bool hit = checker->collides(pose, context);
+            carried += context.stats.boundingVolumeTests - before;
+            QueryContext once;
+            EXPECT_EQ(checker->collides(pose, once), hit);
+            fresh += once.stats.boundingVolumeTests;
+            EXPECT_EQ(hit, reference->collides(pose));
+            colliding += hit ? 1 : 0;
+        }
+    }
+    EXPECT_GT(colliding, 200u);
+    EXPECT_LT(carried, fresh);
+    std::cout << "[ coherence ] " << colliding << " colliding of 2000 states; volume tests " << carried
+              << " with the last pair carried over, " << fresh << " without\n";
 }
 
 TEST(QueryContextPool, LendsDistinctContextsAndReusesReturnedOnes)
