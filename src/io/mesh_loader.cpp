@@ -236,7 +236,7 @@ std::optional<std::string_view> attributeValue(std::string_view attributes, std:
 void rejectBeforeImport(std::string_view data, const std::string &format, const std::string &name)
 {
     const std::string kind = lowercase(format);
-    const std::vector<std::string_view> tokens = leadingTokens(data, 4);
+    const std::vector<std::string_view> tokens = leadingTokens(data, 5);
     const std::string first = tokens.empty() ? std::string() : lowercase(tokens.front());
 
     const bool ply = kind == "ply" || first.rfind("ply", 0) == 0;
@@ -288,20 +288,28 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     if (kind != "off" && !keyword)
         return;
     // The dimension prefix is a lower-case 'n' right before "OFF" ("NOFF" is the normals flag):
-    // then the dimension comes first, and is checked with the counts (it is a small number).
-    const bool dimension = keyword && std::string_view(tokens.front()).find("nOFF") != std::string_view::npos;
-    const std::size_t at = keyword ? 1 : 0;
-    for (std::size_t k = at; k < std::min(tokens.size(), at + (dimension ? 3 : 2)); ++k)
+    // then the dimension comes first, and is checked with the counts (it is a small number). The
+    // reader takes whatever follows the keyword as the next number, even with no blank between.
+    std::vector<std::string_view> counts;
+    bool dimension = false;
+    if (keyword)
     {
-        const std::uintmax_t count = leadingCount(tokens[k]);
-        if (count > data.size())
-            throw InputError(name, 0,
-                             "malformed OFF file: its header announces " + std::string(tokens[k]) + " " +
-                                 (dimension && k == at            ? "dimensions"
-                                  : k == at + (dimension ? 1 : 0) ? "vertices"
-                                                                  : "faces") +
-                                 ", more than its " + std::to_string(data.size()) + " bytes can hold");
+        const std::string_view head = tokens.front();
+        dimension = head.find("nOFF") != std::string_view::npos;
+        const std::size_t end = first.find("off") + 3;
+        if (end < head.size())
+            counts.push_back(head.substr(end));
+        counts.insert(counts.end(), tokens.begin() + 1, tokens.end());
     }
+    else
+        counts = tokens;
+    const char *names[] = {"dimensions", "vertices", "faces"};
+    for (std::size_t k = 0; k < std::min(counts.size(), std::size_t(dimension ? 3 : 2)); ++k)
+        if (leadingCount(counts[k]) > data.size())
+            throw InputError(name, 0,
+                             "malformed OFF file: its header announces " + std::string(counts[k]) + " " +
+                                 names[k + (dimension ? 0 : 1)] + ", more than its " + std::to_string(data.size()) +
+                                 " bytes can hold");
 }
 
 std::string extensionOf(const std::string &path)

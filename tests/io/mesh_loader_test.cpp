@@ -214,9 +214,10 @@ TEST(MeshLoader, OffAnnouncingMoreThanItsBytesHoldIsAnError)
 {
     const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     const std::string huge = "88888888888888888888888888888888";
-    for (const std::string &header : std::vector<std::string>{
-             "OFF\n3 " + huge + " 0\n", "OFF\n" + huge + " 1 0\n", "COFF 3 " + huge + " 0\n",
-             "nOFF 3\n3 " + huge + " 0\n", "NOFF4 " + huge + "i8888 1 0\n", "# comment\nOFF\n3 4000000000 0\n"})
+    for (const std::string &header :
+         std::vector<std::string>{"OFF\n3 " + huge + " 0\n", "OFF\n" + huge + " 1 0\n", "COFF 3 " + huge + " 0\n",
+                                  "nOFF 3\n3 " + huge + " 0\n", "NOFF4 " + huge + "i8888 1 0\n",
+                                  "OFF" + huge + "\n4 4 1\n", "# comment\nOFF\n3 4000000000 0\n"})
     {
         const std::string text = header + body;
         for (const std::string format : {"off", "OFF", ""})
