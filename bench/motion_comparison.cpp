@@ -96,6 +96,11 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             motions.emplace_back(a, b);
         }
         const auto continuous = timeAll(motions, [&](auto *a, auto *b) { return si->checkMotion(a, b); });
+        // With lastValid asked for, the validator also brackets the first contact of a blocked motion.
+        std::pair<ob::State *, double> lastValid(si->allocState(), 0.0);
+        const auto bracketed =
+            timeAll(motions, [&](auto *a, auto *b) { return si->getMotionValidator()->checkMotion(a, b, lastValid); });
+        si->freeState(lastValid.first);
         const auto discreteFcl =
             timeAll(motions, [&](auto *a, auto *b) { return fcl.setup->getSpaceInformation()->checkMotion(a, b); });
         const auto discreteObb = timeAll(
@@ -132,6 +137,7 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
                       << (touchingPass ? std::to_string(wrong) : std::string("-")) << " |\n";
         };
         row("continuous", "obb", continuous);
+        row("continuous, lastValid", "obb", bracketed);
         row("discrete", "obb", discreteObb);
         row("discrete", "fcl", discreteFcl);
         for (auto &[a, b] : motions)

@@ -63,15 +63,25 @@ bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const o
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                                             std::pair<ompl::base::State *, double> &lastValid) const
 {
-    return finish(certify(s1, s2), s1, s2, lastValid.first, &lastValid.second);
+    return finish(verdictThenBracket(s1, s2), s1, s2, lastValid.first, &lastValid.second);
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::checkMotionDetailed(const ompl::base::State *s1,
                                                                                  const ompl::base::State *s2) const
 {
-    const Report report = certify(s1, s2);
+    const Report report = verdictThenBracket(s1, s2);
     finish(report, s1, s2, nullptr, nullptr);
     return report;
+}
+
+ContinuousMotionValidator::Report ContinuousMotionValidator::verdictThenBracket(const ompl::base::State *s1,
+                                                                                const ompl::base::State *s2) const
+{
+    // Most motions a planner asks about are free, and proving that costs the same whether or not
+    // the first contact is wanted: the verdict first, and the first contact searched for only on a
+    // motion the verdict did not prove free.
+    const Report quick = verdict(s1, s2);
+    return quick.free ? quick : certify(s1, s2, quick.contactFound ? quick.contactAt : 2.0);
 }
 
 bool ContinuousMotionValidator::finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
@@ -88,8 +98,8 @@ bool ContinuousMotionValidator::finish(const Report &report, const ompl::base::S
     return report.free;
 }
 
-ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl::base::State *s1,
-                                                                     const ompl::base::State *s2) const
+ContinuousMotionValidator::Report
+ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact) const
 {
     ompl::base::SpaceInformation *si = si_;
     const ompl::base::StateSpacePtr &space = si->getStateSpace();
@@ -127,8 +137,10 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     // needs to be searched for before the first colliding sample.
     const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
     double end = 1.0;  // the search for the first contact stops here
-    bool contactKnown = false;
-    for (unsigned k = 1; k <= n; ++k)
+    bool contactKnown = knownContact <= 1.0;
+    if (contactKnown)
+        end = knownContact;  // only samples before it can hold an earlier contact
+    for (unsigned k = 1; k <= n && double(k) / n < end; ++k)
         if (validity_->poseCollides(poseAt(double(k) / n), *context))
         {
             end = double(k) / n;

@@ -87,9 +87,13 @@ public:
 
 private:
     /// The first-contact search (checkMotionDetailed and checkMotion with a last valid state).
-    Report certify(const ompl::base::State *s1, const ompl::base::State *s2) const;
+    /// `knownContact`, when at most 1, is a fraction where the robot is known to collide: the
+    /// search is then confined to the motion before it.
+    Report certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact = 2.0) const;
     /// The verdict alone (no bracket): raked collision checks, then certification of what is left.
     Report verdict(const ompl::base::State *s1, const ompl::base::State *s2) const;
+    /// verdict(), then certify() when the motion was not proven free.
+    Report verdictThenBracket(const ompl::base::State *s1, const ompl::base::State *s2) const;
     bool finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
                 ompl::base::State *lastValidState, double *lastValidFraction) const;
 
