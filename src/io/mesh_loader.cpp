@@ -133,6 +133,56 @@ std::uintmax_t leadingCount(std::string_view token)
     return value;
 }
 
+// Why one PLY header line (trimmed) is not one the format defines (empty when it is one): a
+// garbled line makes assimp misread what follows, e.g. an ASCII body read as binary, with
+// gigabytes allocated for the counts it then finds (found by fuzzing,
+// tests/fuzz_corpus/mesh/regression_ply_garbled_format_line.ply). Element counts above the data's
+// size are refused as well: every element takes at least one byte.
+std::string plyHeaderLineProblem(std::string_view line, bool first, std::size_t dataSize)
+{
+    const auto isType = [](std::string_view t) {
+        for (const char *known : {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+                                  "int16", "uint16", "int32", "uint32", "float32", "float64"})
+            if (t == known)
+                return true;
+        return false;
+    };
+    const auto isCount = [&](std::string_view t) {
+        return !t.empty() && t.find_first_not_of("0123456789") == std::string_view::npos && leadingCount(t) <= dataSize;
+    };
+    const std::string quoted = "its header line '" + std::string(line.substr(0, 60)) + "' ";
+    if (first)
+        return line == "ply" ? std::string() : "its first line is not 'ply'";
+    std::vector<std::string_view> words;
+    for (std::size_t i = 0; i < line.size();)
+    {
+        const std::size_t from = line.find_first_not_of(" \t", i);
+        if (from == std::string_view::npos)
+            break;
+        const std::size_t to = std::min(line.size(), line.find_first_of(" \t", from));
+        words.push_back(line.substr(from, to - from));
+        i = to;
+    }
+    if (words.empty() || words[0] == "comment" || words[0] == "obj_info")
+        return {};
+    if (words[0] == "format")
+        return words.size() == 3 &&
+                       (words[1] == "ascii" || words[1] == "binary_little_endian" || words[1] == "binary_big_endian") &&
+                       words[2] == "1.0"
+                   ? std::string()
+                   : quoted + "is not a format line (format ascii|binary_little_endian|binary_big_endian 1.0)";
+    if (words[0] == "element")
+        return words.size() == 3 && isCount(words[2])
+                   ? std::string()
+                   : quoted + "is not an element line with a count the data can hold";
+    if (words[0] == "property")
+        return (words.size() == 3 && isType(words[1])) ||
+                       (words.size() == 5 && words[1] == "list" && isType(words[2]) && isType(words[3]))
+                   ? std::string()
+                   : quoted + "is not a property line (property TYPE NAME, or property list TYPE TYPE NAME)";
+    return quoted + "is not a PLY header line";
+}
+
 // Why the PLY header of `data` cannot be read safely (empty when it can). assimp 5.2's PLY reader
 // only stops on a line that is exactly "end_header", and loops without end or reads past the data
 // on headers it does not expect: so the header must be lines of printable text ending in such a
@@ -156,6 +206,8 @@ std::string plyHeaderProblem(std::string_view data)
             line.remove_suffix(1);
         if (line == word)
             return {};
+        if (const std::string problem = plyHeaderLineProblem(line, start == 0, data.size()); !problem.empty())
+            return problem;
         start = end + 1;
     }
     return "its header has no end_header line";

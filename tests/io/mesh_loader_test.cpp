@@ -196,6 +196,21 @@ TEST(MeshLoader, PlyWithoutHeaderEndIsAnErrorNotAHang)
         broken.replace(broken.find(from), from.size(), to);
         EXPECT_THROW(loadMeshFromMemory(broken, "ply", MeshRole::Environment, "broken.ply"), InputError) << to;
     }
+    // Header lines the format does not define, and element counts the data cannot hold (a garbled
+    // format line made assimp read the ASCII body as binary and allocate gigabytes, found by
+    // fuzzing: tests/fuzz_corpus/mesh/regression_ply_garbled_format_line.ply).
+    for (const auto &[from, to] : {std::pair<std::string, std::string>{"format ascii 1.0", "format ascii 1.s[ii 1.0"},
+                                   {"property float y", "t y"},
+                                   {"element vertex 3", "element vertex 88888888888"},
+                                   {"property list uchar int vertex_indices", "property list uchar vertex_indices"}})
+    {
+        std::string broken = fixedHeader;
+        broken.replace(broken.find(from), from.size(), to);
+        EXPECT_THROW(loadMeshFromMemory(broken, "ply", MeshRole::Environment, "broken.ply"), InputError) << to;
+    }
+    std::string commented = fixedHeader;
+    commented.replace(commented.find("element vertex"), 0, "comment made by hand\nobj_info one triangle\n");
+    EXPECT_EQ(loadMeshFromMemory(commented, "ply", MeshRole::Environment, "ok.ply").mesh->triangleCount(), 1u);
     // Windows line ends and trailing blanks are text.
     std::string crlf = fixedHeader;
     for (std::size_t at = crlf.find('\n'); at != std::string::npos; at = crlf.find('\n', at + 2))
