@@ -5,9 +5,11 @@
 // per motion (median and mean) and how many motions each discrete validator accepts although they touch an obstacle
 // (the continuous validator rejects them; brute force at 20x OMPL's resolution confirms contact).
 //
-//   hybridcd_bench_motions [--motions N] [--seed S] [--no-touching] PROBLEM.cfg...
+//   hybridcd_bench_motions [--motions N] [--seed S] [--no-touching] [--translations] PROBLEM.cfg...
 //
 // --no-touching skips the brute-force pass (the last column then reads "-"), for quick timing runs.
+// --translations makes every motion a pure translation (the end keeps the start's rotation) and adds
+// a row with the exact first contact of the time-augmented LP turned off (bisection alone).
 #include "bench_support.h"
 
 #include "hybridcd/fcl/fcl_checker.h"
@@ -16,12 +18,15 @@
 #include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 using namespace hcd;
 using hcd::bench::median;
@@ -56,11 +61,28 @@ Timing timeAll(const std::vector<std::pair<ob::State *, ob::State *>> &motions, 
 
 namespace
 {
+// Gives `b` the rotation of `a`.
+void keepRotation(const ob::SpaceInformation &si, bool planar, const ob::State *a, ob::State *b)
+{
+    if (planar)
+        b->as<ob::SE2StateSpace::StateType>()->setYaw(a->as<ob::SE2StateSpace::StateType>()->getYaw());
+    else
+        si.getStateSpace()->as<ob::SE3StateSpace>()->getSubspace(1)->copyState(
+            b->as<ob::SE3StateSpace::StateType>()->as<ob::SO3StateSpace::StateType>(1),
+            a->as<ob::SE3StateSpace::StateType>()->as<ob::SO3StateSpace::StateType>(1));
+}
+
 int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
 {
     const std::size_t count = std::size_t(cl.positiveInteger("motions", 2000));
     const std::uint_fast32_t seed = cl.has("seed") ? cli::seedOf(cl) : 1;
     const bool touchingPass = !cl.has("no-touching");
+    const bool translations = cl.has("translations");
+    // The planning set-up brackets first contacts to 1e-3 of a motion or one validity segment;
+    // check-motion and the API default to 1e-6.
+    const std::optional<double> contactTolerance =
+        cl.has("contact-tolerance") ? std::optional<double>(cl.positiveNumber("contact-tolerance", 1e-6))
+                                    : std::nullopt;
     const std::vector<std::string> &problems = cl.positionals();
     if (problems.empty())
         throw cli::UsageError("missing the problem files (.cfg)");
@@ -78,6 +100,8 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             makePlanningProblem(problem, checkers.make("obb", problem.scene), MotionCheck::Discrete);
         for (auto *p : {&obb, &fcl, &obbDiscrete})
             p->setup->setup();
+        if (contactTolerance)
+            obb.continuousValidator->setContactTolerance(*contactTolerance);
         const auto si = obb.setup->getSpaceInformation();
         auto sampler = si->allocStateSampler();
         // Motions as RRT-style planners make them: valid start, end at up to 20% of the extent.
@@ -91,6 +115,8 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             do
             {
                 sampler->sampleUniformNear(b, a, 0.2 * si->getMaximumExtent());
+                if (translations)
+                    keepRotation(*si, problem.config.planar, a, b);
                 si->enforceBounds(b);
             } while (!si->isValid(b));
             motions.emplace_back(a, b);
@@ -98,6 +124,16 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
         const auto continuous = timeAll(motions, [&](auto *a, auto *b) { return si->checkMotion(a, b); });
         // With lastValid asked for, the validator also brackets the first contact of a blocked motion.
         std::pair<ob::State *, double> lastValid(si->allocState(), 0.0);
+        // With --translations, first without the exact first contact (bisection alone), then with it.
+        Timing bisected;
+        if (translations)
+        {
+            const auto finder = std::make_shared<const TranslationContactFinder>(problem.scene);
+            auto &validator = *obb.continuousValidator;
+            validator.setTranslationContactFinder(nullptr);
+            bisected = timeAll(motions, [&](auto *a, auto *b) { return validator.checkMotion(a, b, lastValid); });
+            validator.setTranslationContactFinder(finder);
+        }
         const auto bracketed =
             timeAll(motions, [&](auto *a, auto *b) { return si->getMotionValidator()->checkMotion(a, b, lastValid); });
         si->freeState(lastValid.first);
@@ -138,6 +174,8 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
         };
         row("continuous", "obb", continuous);
         row("continuous, lastValid", "obb", bracketed);
+        if (translations)
+            row("continuous, lastValid, bisection only", "obb", bisected);
         row("discrete", "obb", discreteObb);
         row("discrete", "fcl", discreteFcl);
         for (auto &[a, b] : motions)
@@ -162,6 +200,10 @@ int main(int argc, char **argv)
         .option("motions", "N", "random motions per problem (default 2000)")
         .option("seed", "N", "seed of OMPL's random numbers (default 1)")
         .flag("no-touching", "skip the brute-force pass (the last column then reads '-')")
+        .flag("translations", "pure translations only, with a row for the bisection alone")
+        .option("contact-tolerance", "FRACTION",
+                "bracket first contacts to this fraction of a motion (default: the planning set-up's, 1e-3 or one "
+                "validity segment)")
         .footer("\nExample:\n  hybridcd_bench_motions --motions 500 --no-touching problems/window_3d.cfg\n");
     return bench::runProgram(app, cl, argc, argv, [&] { return run(cl, checkers); });
 }

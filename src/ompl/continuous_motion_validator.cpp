@@ -35,7 +35,23 @@ std::uint64_t reverseBits(std::uint64_t i, unsigned bits)
 // to a power of two); certification then starts from intervals spanning kStartGroup raked steps.
 // Measured with bench/motion_comparison.cpp (bench/README.md, section 3).
 constexpr unsigned kRakeStride = 8;
+
+// A state of the space, freed when it goes out of scope.
+struct ScratchState
+{
+    explicit ScratchState(ompl::base::SpaceInformation &space) : si(&space), state(space.allocState()) {}
+    ScratchState(const ScratchState &) = delete;
+    ScratchState &operator=(const ScratchState &) = delete;
+    ~ScratchState() { si->freeState(state); }
+    ompl::base::SpaceInformation *si;
+    ompl::base::State *state;
+};
 constexpr unsigned kStartGroup = 1;
+// Bisection needs about log2(1 / tolerance) levels to close a bracket, the exact first contact of a
+// translation a fixed amount of LP work: on OMPL.app's problems the LP is 1.3-2x faster at a bracket
+// of 1e-6 (check-motion's and the API's default) and up to 2x slower at the planning set-up's 1e-3
+// (bench/README.md, "Pure translations"), so it is used for brackets finer than this.
+constexpr double kExactTranslationBelow = 1e-4;
 }  // namespace
 
 ContinuousMotionValidator::ContinuousMotionValidator(const ompl::base::SpaceInformationPtr &si,
@@ -81,7 +97,54 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdictThenBracket(
     // the first contact is wanted: the verdict first, and the first contact searched for only on a
     // motion the verdict did not prove free.
     const Report quick = verdict(s1, s2);
-    return quick.free ? quick : certify(s1, s2, quick.contactFound ? quick.contactAt : 2.0);
+    if (quick.free)
+        return quick;
+    if (translations_ && quick.contactFound && quick.contactAt > 0.0)
+        if (const std::optional<Report> exact = bracketTranslation(s1, s2, quick.contactAt))
+            return *exact;
+    return certify(s1, s2, quick.contactFound ? quick.contactAt : 2.0);
+}
+
+std::optional<ContinuousMotionValidator::Report>
+ContinuousMotionValidator::bracketTranslation(const ompl::base::State *s1, const ompl::base::State *s2,
+                                              double knownContact) const
+{
+    const bool planar = validity_->planar();
+    const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
+    // OMPL interpolates a fixed rotation as itself (SE(2) yaw, SO(3) slerp with equal ends) and the
+    // translation linearly: every robot point then moves by tau * (t2 - t1).
+    if (p1.rotation != p2.rotation)
+        return std::nullopt;
+    const ompl::base::StateSpacePtr &space = si_->getStateSpace();
+    const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
+    const double tolerance = toleranceIsSegment_ ? std::max(contactTolerance_, 1.0 / n) : contactTolerance_;
+    if (tolerance >= kExactTranslationBelow)
+        return std::nullopt;
+    // The first contact lies at or before the colliding state the verdict found: only that part of
+    // the motion is searched (shorter swept boxes, fewer candidate pairs).
+    TranslationContact first = translations_->firstContact(p1, knownContact * (p2.translation - p1.translation));
+    if (!first.contact || !(first.time > 0.0))
+        return std::nullopt;
+    first.time *= knownContact;
+    // The last valid state half the tolerance before the contact, a colliding state half the
+    // tolerance after it: both are checked as any state is (solid semantics included), so that
+    // rounding in the LP can never hand a planner a colliding state. A grazing contact (touch, then
+    // apart) has no colliding state after it and is left to certify().
+    Report report;
+    report.lastFree = std::max(0.0, first.time - 0.5 * tolerance);
+    const double blockedAt = std::min(1.0, first.time + 0.5 * tolerance);
+    const ScratchState holder(*si_);
+    const QueryContextPool::Lease context = validity_->contexts().borrow();
+    const auto collidesAt = [&](double tau) {
+        space->interpolate(s1, s2, tau, holder.state);
+        return validity_->poseCollides(poseOfState(holder.state, planar), *context);
+    };
+    if (collidesAt(report.lastFree) || !collidesAt(blockedAt))
+        return std::nullopt;
+    report.contactFound = report.blocked = true;
+    report.contactAt = report.blockedAt = blockedAt;
+    translationBrackets_.fetch_add(1, std::memory_order_relaxed);
+    return report;
 }
 
 bool ContinuousMotionValidator::finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
@@ -106,12 +169,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     const bool planar = validity_->planar();
     // One context for every query of this motion (coherence between neighbouring states).
     const QueryContextPool::Lease context = validity_->contexts().borrow();
-    struct StateHolder
-    {
-        ompl::base::SpaceInformation *si;
-        ompl::base::State *state;
-        ~StateHolder() { si->freeState(state); }
-    } holder{si, si->allocState()};
+    const ScratchState holder(*si);
     ompl::base::State *state = holder.state;
     const auto poseAt = [&](double tau) {
         space->interpolate(s1, s2, tau, state);
@@ -260,12 +318,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     const bool planar = validity_->planar();
     // One context for every query of this motion (coherence between neighbouring states).
     const QueryContextPool::Lease context = validity_->contexts().borrow();
-    struct StateHolder
-    {
-        ompl::base::SpaceInformation *si;
-        ompl::base::State *state;
-        ~StateHolder() { si->freeState(state); }
-    } holder{si, si->allocState()};
+    const ScratchState holder(*si);
     ompl::base::State *state = holder.state;
     const auto poseAt = [&](double tau) {
         space->interpolate(s1, s2, tau, state);

@@ -106,6 +106,7 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
         // contact to 1e-3 of the motion or one validity segment, whichever is coarser, keeps that
         // cheap (check-motion and the API default to 1e-6).
         validator->setContactTolerance(1e-3, true);
+        validator->setTranslationContactFinder(std::make_shared<const TranslationContactFinder>(problem.scene));
         si->setMotionValidator(validator);
         planning.continuousValidator = std::move(validator);
     }

@@ -8,6 +8,7 @@
 #include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include <gtest/gtest.h>
@@ -255,7 +256,76 @@ void expectVerdictMatchesBracketing(const std::string &cfg, int motions)
     si->freeState(b);
     si->freeState(s);
 }
+// Pure translations (the rotation copied from the start) bracketed twice: by the exact first contact
+// of the time-augmented LP, and by bisection alone. Both keep the bracket promise, agree on the
+// verdict, and their brackets overlap; brute force finds nothing on the proven-free prefix.
+void expectTranslationBracketsAgree(const std::string &cfg, int motions)
+{
+    const LoadedProblem problem = loadProblem(cfg);
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    const auto si = planning.setup->getSpaceInformation();
+    auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    validator.setContactTolerance(1e-6);
+    const auto finder = std::make_shared<const TranslationContactFinder>(problem.scene);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    auto sampler = si->allocStateSampler();
+    ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();
+    int blocked = 0, attempts = 0;
+    for (int motion = 0; motion < motions && ++attempts < 20000;)
+    {
+        sampler->sampleUniform(a);
+        if (!si->isValid(a))
+            continue;
+        sampler->sampleUniformNear(b, a, 0.2 * si->getMaximumExtent());
+        si->enforceBounds(b);
+        if (problem.config.planar)
+            b->as<ob::SE2StateSpace::StateType>()->setYaw(a->as<ob::SE2StateSpace::StateType>()->getYaw());
+        else
+            si->getStateSpace()->as<ob::SE3StateSpace>()->getSubspace(1)->copyState(
+                b->as<ob::SE3StateSpace::StateType>()->as<ob::SO3StateSpace::StateType>(1),
+                a->as<ob::SE3StateSpace::StateType>()->as<ob::SO3StateSpace::StateType>(1));
+        ++motion;
+        validator.setTranslationContactFinder(finder);
+        const auto exact = validator.checkMotionDetailed(a, b);
+        validator.setTranslationContactFinder(nullptr);
+        const auto bisected = validator.checkMotionDetailed(a, b);
+        ASSERT_EQ(exact.free, bisected.free) << cfg << " motion " << motion;
+        if (exact.free)
+            continue;
+        ++blocked;
+        for (const auto &report : {exact, bisected})
+        {
+            ASSERT_TRUE(report.blocked) << cfg << " motion " << motion;
+            EXPECT_GT(report.blockedAt, report.lastFree);
+            EXPECT_LE(report.blockedAt - report.lastFree, 1e-6 * (1.0 + 1e-9));
+            for (int k = 0; k <= 200; ++k)
+            {
+                si->getStateSpace()->interpolate(a, b, report.lastFree * k / 200, s);
+                ASSERT_FALSE(reference->collides(poseOfState(s, problem.config.planar))) << cfg << " motion " << motion;
+            }
+        }
+        // Both brackets hold the same first blocking point (a near contact may block bisection a
+        // little earlier than the exact contact, never later).
+        EXPECT_LE(bisected.lastFree, exact.blockedAt) << cfg << " motion " << motion;
+        EXPECT_LE(exact.lastFree - bisected.blockedAt, 1e-6) << cfg << " motion " << motion;
+    }
+    EXPECT_GE(blocked, motions / 5) << cfg;
+    // Most blocked translations took the exact path (grazing contacts are left to bisection).
+    EXPECT_GE(validator.exactTranslationBrackets(), std::uint64_t(blocked) * 3 / 4) << cfg;
+    si->freeState(a);
+    si->freeState(b);
+    si->freeState(s);
+}
 }  // namespace
+
+TEST(MotionValidator, PureTranslationsGetTheExactFirstContact)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cubicles, "3D/cubicles.cfg");
+    expectTranslationBracketsAgree(cubicles, test::cases(60));
+    HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
+    expectTranslationBracketsAgree(maze, test::cases(60));
+    expectTranslationBracketsAgree(test::sourcePath("problems/window_3d.cfg"), test::cases(60));
+}
 
 TEST(MotionValidator, VerdictAgreesWithBracketingOnOmplAppMotions)
 {

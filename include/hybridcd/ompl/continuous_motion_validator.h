@@ -23,11 +23,13 @@
 #pragma once
 
 #include "hybridcd/ompl/state_validity_checker.h"
+#include "hybridcd/query/translation_contact.h"
 
 #include <ompl/base/MotionValidator.h>
 
 #include <atomic>
 #include <memory>
+#include <optional>
 
 namespace hcd
 {
@@ -75,6 +77,16 @@ public:
     /// when that is coarser (what OMPL's discrete validator offers planners).
     void setContactTolerance(double fraction, bool atMostOneSegment = false);
 
+    /// On motions along which the rotation stays the same (pure translations), the first contact of
+    /// a blocked motion is then found exactly by the time-augmented LP (query/translation_contact.h)
+    /// instead of by bisection, when the contact tolerance is finer than 1e-4 of the motion (where
+    /// that is faster); the last valid state is placed half the tolerance before it and checked.
+    /// The finder must be built on the validity checker's scene. Null turns it off.
+    void setTranslationContactFinder(std::shared_ptr<const TranslationContactFinder> finder)
+    {
+        translations_ = std::move(finder);
+    }
+
     /// Whether s2 must satisfy the state-space bounds (default true, as OMPL's validators do).
     void setApplyBounds(bool apply) { applyBounds_ = apply; }
 
@@ -84,6 +96,8 @@ public:
 
     std::uint64_t validMotions() const { return validCount_.load(); }
     std::uint64_t invalidMotions() const { return invalidCount_.load(); }
+    /// Blocked motions bracketed by their exact first contact (see setTranslationContactFinder).
+    std::uint64_t exactTranslationBrackets() const { return translationBrackets_.load(); }
 
 private:
     /// The first-contact search (checkMotionDetailed and checkMotion with a last valid state).
@@ -92,17 +106,23 @@ private:
     Report certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact = 2.0) const;
     /// The verdict alone (no bracket): raked collision checks, then certification of what is left.
     Report verdict(const ompl::base::State *s1, const ompl::base::State *s2) const;
+    /// The bracket of a blocked pure translation from its exact first contact, searched for on
+    /// [0, knownContact] (a fraction where the robot collides); nullopt when the motion rotates or
+    /// the answer cannot be confirmed (certify() then decides).
+    std::optional<Report> bracketTranslation(const ompl::base::State *s1, const ompl::base::State *s2,
+                                             double knownContact) const;
     /// verdict(), then certify() when the motion was not proven free.
     Report verdictThenBracket(const ompl::base::State *s1, const ompl::base::State *s2) const;
     bool finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
                 ompl::base::State *lastValidState, double *lastValidFraction) const;
 
     std::shared_ptr<const StateValidityChecker> validity_;
+    std::shared_ptr<const TranslationContactFinder> translations_;
     double robotRadius_;
     double minimumClearance_;
     double contactTolerance_ = 1e-6;
     bool toleranceIsSegment_ = false;
     bool applyBounds_ = true;
-    mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0};
+    mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0}, translationBrackets_{0};
 };
 }  // namespace hcd
