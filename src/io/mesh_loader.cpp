@@ -276,6 +276,74 @@ std::optional<std::string_view> attributeValue(std::string_view attributes, std:
     return std::nullopt;
 }
 
+// The first `l` (line) statement of OBJ data that assimp 5.2's OBJ reader could read with fewer
+// than two vertices, as its line number and why (line 0 when there is none). The reader counts
+// such a statement as no segment yet stores its vertex, so the mesh's vertex array is one vertex
+// short for each; after two of them, the middle vertex of a longer `l` statement is copied one
+// element past the array's end (a heap overflow of 12 bytes, and as many in the normal and texture
+// coordinate arrays; fixed upstream after 5.2.5). glibc noticed only later, on some other free():
+// found by fuzzing (tests/fuzz_corpus/mesh/regression_obj_line_with_one_index.obj).
+// The check reads lines as the reader does: any line starting with 'l' is a line statement
+// whatever its first word, lines end at \n, \r, \f or a zero byte, and a backslash before a line end
+// joins the text after the next \n. It accepts a statement only when each word after the first is
+// made of digits, '-' and '/' with no number over 9 digits (so the reader's atoi() never
+// overflows and its steps stay within the word), and at least two words start with a vertex index
+// (a digit, or '-' and a digit): the reader then takes a vertex from each or fails cleanly.
+std::pair<int, std::string> objLineStatementProblem(std::string_view data)
+{
+    const auto lineEnd = [](char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; };
+    const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+    int line = 1;
+    for (std::size_t start = 0; start < data.size(); ++start)
+    {
+        // Every byte after a line end starts a line; leading blanks are skipped, to be safe.
+        std::size_t i = start;
+        while (i < data.size() && (data[i] == ' ' || data[i] == '\t'))
+            ++i;
+        const int statementLine = line;
+        std::size_t end = i;  // the line end of the statement (past continuations)
+        std::string text;
+        while (end < data.size() && !lineEnd(data[end]))
+        {
+            if (data[end] == '\\' && end + 1 < data.size() && lineEnd(data[end + 1]))
+            {
+                const std::size_t next = data.find('\n', end + 1);
+                line += next != std::string_view::npos;
+                end = next == std::string_view::npos ? data.size() : next + 1;
+                continue;
+            }
+            text += data[end++];
+        }
+        line += end < data.size() && data[end] == '\n';
+        start = end;
+        if (text.empty() || text[0] != 'l')
+            continue;
+        // Words after the statement's first, split where the reader splits them.
+        int indices = 0;
+        for (std::size_t w = text.find_first_of(" \t"); w < text.size() && indices < 2;)
+        {
+            w = text.find_first_not_of(" \t", w);
+            if (w == std::string::npos)
+                break;
+            const std::string_view word = std::string_view(text).substr(w, text.find_first_of(" \t", w) - w);
+            w += word.size();
+            std::size_t run = 0;
+            for (char c : word)
+            {
+                run = digit(c) ? run + 1 : 0;
+                if ((!digit(c) && c != '-' && c != '/') || run > 9)
+                    return {statementLine, "its line statement ('l') holds '" + std::string(word.substr(0, 20)) +
+                                               "', not a vertex index"};
+            }
+            indices += digit(word[0]) || (word.size() > 1 && word[0] == '-' && digit(word[1]));
+        }
+        if (indices < 2)
+            return {statementLine, "its line statement ('l') has " + std::to_string(indices) + " vertex index" +
+                                       (indices == 1 ? "" : "es") + " (a line needs two or more)"};
+    }
+    return {0, {}};
+}
+
 // Refuses, before assimp sees them, data that assimp 5.2's readers cannot survive (each found by
 // fuzzing; `format` is the file's extension or the buffer's hint):
 // - PLY data without an "end_header" line, or with a header that is not printable text (see
@@ -285,9 +353,17 @@ std::optional<std::string_view> attributeValue(std::string_view attributes, std:
 //   allocates every announced face before reading one, and billions of them exhaust memory
 //   (tests/fuzz_corpus/mesh/regression_off_huge_face_count.off). Every vertex and face takes more
 //   than one byte, so a count above the data's size is never valid.
-void rejectBeforeImport(std::string_view data, const std::string &format, const std::string &name)
+// - OBJ data with a line statement the OBJ reader could read with fewer than two vertices (see
+//   objLineStatementProblem): the reader then writes past the end of its vertex array. Checked
+//   whenever the OBJ reader may get the data: an "obj" extension or hint, or one no reader claims
+//   (assimp then picks a reader by content).
+void rejectBeforeImport(std::string_view data, const std::string &format, const std::string &name,
+                        const Assimp::Importer &importer)
 {
     const std::string kind = lowercase(format);
+    if (kind == "obj" || !importer.IsExtensionSupported(kind.c_str()))
+        if (const auto [line, problem] = objLineStatementProblem(data); !problem.empty())
+            throw InputError(name, line, "malformed OBJ file: " + problem);
     const std::vector<std::string_view> tokens = leadingTokens(data, 5);
     const std::string first = tokens.empty() ? std::string() : lowercase(tokens.front());
 
@@ -524,7 +600,7 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
         content.append(block, std::size_t(in.gcount()));
     }
     rejectAboveByteLimit(content.size(), "file", path, limits);
-    rejectBeforeImport(content, extensionOf(path), path);
+    rejectBeforeImport(content, extensionOf(path), path, *importer.importer_);
     return loadFrom(*importer.importer_, Source{path, false, {}, nullptr}, role, limits);
 }
 
@@ -535,7 +611,7 @@ LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, con
     if (data.empty())
         throw InputError(sourceName, 0, "mesh data is empty");
     rejectAboveByteLimit(data.size(), "data", sourceName, limits);
-    rejectBeforeImport(data, formatHint, sourceName);
+    rejectBeforeImport(data, formatHint, sourceName, *importer.importer_);
     return loadFrom(*importer.importer_, Source{sourceName, true, data, &formatHint}, role, limits);
 }
 

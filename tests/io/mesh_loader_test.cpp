@@ -256,6 +256,62 @@ TEST(MeshLoader, OffAnnouncingMoreThanItsBytesHoldIsAnError)
             << header;
 }
 
+// Found by fuzzing (the heap corruption of tests/fuzz_corpus/mesh/regression_obj_line_with_one_index.obj):
+// assimp 5.2's OBJ reader counts a line statement with one vertex as no segment but stores its
+// vertex, so after two of them it copies the middle vertex of a longer line past the end of its
+// vertex array. Nothing failed at once: glibc aborted loads later. FuzzCorpus.mesh replays the input
+// with glibc's heap checks (MALLOC_CHECK_=3), which abort on it without this guard.
+TEST(MeshLoader, ObjLineWithFewerThanTwoIndicesIsRefusedBeforeImport)
+{
+    const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
+    const std::pair<std::string, std::string> refused[] = {
+        {head + "l 1\nl 2\nl 1 2 3\n", "obj:6: malformed OBJ file: its line statement ('l') has 1 vertex index"},
+        {head + "l -1\n", "obj:6: malformed OBJ file: its line statement ('l') has 1 vertex index"},
+        {head + "l\n", "obj:6: malformed OBJ file: its line statement ('l') has 0 vertex indexes"},
+        {head + "l /1 2\n", "obj:6: malformed OBJ file: its line statement ('l') has 1 vertex index"},
+        // Any line starting with 'l' is a line statement to the reader, whatever its first word.
+        {head + "lod 1\n", "obj:6: malformed OBJ file: its line statement ('l') has 1 vertex index"},
+        {head + "l 1 x2\n", "obj:6: malformed OBJ file: its line statement ('l') holds 'x2', not a vertex index"},
+        // A number the reader's atoi() overflows on.
+        {head + "l 1 6442450944\n", "obj:6: malformed OBJ file: its line statement ('l') holds '6442450944'"},
+        // The reader also ends lines at \r, \f and zero bytes, and skips a backslash-ended one.
+        {"v 0 0 0\rl 1\r", "obj:1: malformed OBJ file: its line statement ('l') has 1 vertex index"},
+        {head + std::string("f 1 2 3\0l 1\n", 12), "obj:6: malformed OBJ file"},
+        {head + "f 1 2 \\\n3\nl 1\n", "obj:8: malformed OBJ file"},
+        {head + "l 1 \\\n\nl 2\n", "obj:6: malformed OBJ file: its line statement ('l') has 1 vertex index"},
+        {head + "l 1 \\ 2\n", "obj:6: malformed OBJ file: its line statement ('l') holds '\\'"},
+        {head + "l 1\\\r\n2\n", "obj:6: malformed OBJ file: its line statement ('l') has 1 vertex index"},
+    };
+    for (const auto &[text, message] : refused)
+        for (const std::string format : {"obj", "OBJ", "", "txt"})
+        {
+            try
+            {
+                loadMeshFromMemory(text, format, MeshRole::Environment, "obj");
+                ADD_FAILURE() << "accepted as '" << format << "': " << text;
+            }
+            catch (const InputError &e)
+            {
+                EXPECT_EQ(std::string(e.what()).rfind(message, 0), 0u) << e.what() << "\nfor: " << text;
+            }
+        }
+    EXPECT_THROW(loadMesh(test::writeTempFile("one_index.obj", head + "l 1\nl 2\nl 1 2 3\n"), MeshRole::Environment),
+                 InputError);
+    // Well-formed line statements load as before; their segments are skipped, not triangles.
+    for (const std::string lines :
+         {"l 1 2\n", "l 1 2 3 4\n", "l -1 -2\n", "l 1/1 2/1\n", "l 1\t2\r\n", "l 1 \\\n 2\n", "l 1 \\\r\n2\n"})
+    {
+        const LoadedMesh m = loadMeshFromMemory("vt 0 0\n" + head + lines, "obj", MeshRole::Environment, "lines.obj");
+        EXPECT_EQ(m.mesh->triangleCount(), 1u) << lines;
+        EXPECT_GE(m.skippedNonTriangles, 1u) << lines;
+    }
+    // Data for another reader is not read as OBJ.
+    EXPECT_EQ(
+        loadMeshFromMemory("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\nl 1\n", "off", MeshRole::Environment, "l.off")
+            .mesh->triangleCount(),
+        1u);
+}
+
 TEST(MeshLoader, RobotIsCentredOnItsVertexMean)
 {
     const std::string path = test::writeTempFile("robot.obj", kObj);
