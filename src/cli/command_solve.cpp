@@ -8,6 +8,7 @@
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/ompl/retraction_sampler.h"
 #include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_catalogue.h"
 
@@ -51,6 +52,9 @@ void declareSolve(CommandLine &cl)
         .option("out", "PATH_FILE", "where to write the path (default NAME.solution.path here)")
         .option("param", "KEY=VALUE[,...]", "planner parameters, e.g. range=5,intermediate_states=1")
         .option("motion", "continuous|discrete", "how motions are checked (default continuous)")
+        .option("sampler", "uniform|retraction",
+                "state sampling (default uniform); retraction pushes colliding samples out onto the "
+                "obstacles' surfaces, where narrow passages are")
         .flag("verbose", "OMPL's progress messages");
     addCheckerOptions(cl, false);
     cl.footer(R"(
@@ -79,6 +83,9 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::string checkerName = checkerNamesOf(cl, checkers, checkerOptions).front();
     const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));
     const auto params = parseParams(cl.text("param", ""));
+    const std::string sampling = cl.text("sampler", "uniform");
+    if (sampling != "uniform" && sampling != "retraction")
+        throw UsageError("option --sampler needs uniform or retraction, got '" + sampling + "'");
 
     const LoadedProblem problem = loadProblemFor(cl);
     // The default name cannot be OMPL.app's NAME.path, which its problem folders ship as samples.
@@ -92,6 +99,8 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
 
     PlanningProblem planning = makePlanningProblem(problem, checker, motion);
     requireCollisionFreeStartAndGoal(problem, planning);
+    if (sampling == "retraction")
+        useRetractionSampling(planning);
     PlannerRequest request{cl.text("planner", "rrtconnect"), "", params};
     planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
@@ -106,6 +115,7 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
               << "checker: " << checker->name() << " (built in " << buildSeconds * 1e3 << " ms)\n"
               << "planner: " << planning.setup->getPlanner()->getName() << '\n'
               << "motion check: " << cl.text("motion", "continuous") << '\n'
+              << "sampler: " << sampling << '\n'
               << "solved: " << (solved ? "yes" : "no") << " (" << status.asString() << ")\n"
               << "solve time: " << solveSeconds << " s\n"
               << "collision checks: " << checks << '\n'

@@ -93,8 +93,9 @@ std::string lowercase(std::string_view text)
     return out;
 }
 
-// Whitespace-separated tokens of `data`, '#' comments skipped, at most `count` of them.
-std::vector<std::string_view> leadingTokens(std::string_view data, std::size_t count)
+// Whitespace-separated tokens of `data`, at most `count` of them; with `comments`, '#' comments
+// (to the end of the line) are skipped.
+std::vector<std::string_view> leadingTokens(std::string_view data, std::size_t count, bool comments = true)
 {
     std::vector<std::string_view> tokens;
     std::size_t i = 0;
@@ -103,7 +104,7 @@ std::vector<std::string_view> leadingTokens(std::string_view data, std::size_t c
         const unsigned char c = static_cast<unsigned char>(data[i]);
         if (std::isspace(c))
             ++i;
-        else if (c == '#')
+        else if (comments && c == '#')
             i = std::min(data.size(), data.find('\n', i));
         else
         {
@@ -153,16 +154,8 @@ std::string plyHeaderLineProblem(std::string_view line, bool first, std::size_t 
     const std::string quoted = "its header line '" + std::string(line.substr(0, 60)) + "' ";
     if (first)
         return line == "ply" ? std::string() : "its first line is not 'ply'";
-    std::vector<std::string_view> words;
-    for (std::size_t i = 0; i < line.size();)
-    {
-        const std::size_t from = line.find_first_not_of(" \t", i);
-        if (from == std::string_view::npos)
-            break;
-        const std::size_t to = std::min(line.size(), line.find_first_of(" \t", from));
-        words.push_back(line.substr(from, to - from));
-        i = to;
-    }
+    // PLY has no '#' comments: a word starting with '#' is an unknown word.
+    const std::vector<std::string_view> words = leadingTokens(line, line.size(), false);
     if (words.empty() || words[0] == "comment" || words[0] == "obj_info")
         return {};
     if (words[0] == "format")
@@ -601,6 +594,8 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
     }
     rejectAboveByteLimit(content.size(), "file", path, limits);
     rejectBeforeImport(content, extensionOf(path), path, *importer.importer_);
+    // assimp then reads the file again by path, not these bytes: a mesh's own references (an OBJ's
+    // .mtl library, a COLLADA file's external parts) resolve only beside the file.
     return loadFrom(*importer.importer_, Source{path, false, {}, nullptr}, role, limits);
 }
 

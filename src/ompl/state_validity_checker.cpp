@@ -67,19 +67,24 @@ bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist,
     const bool valid = isValid(state, dist);
     if (valid || !validState)
         return valid;
+    validStateAvailable = pushedOut(state, validState);
+    return false;
+}
+
+bool StateValidityChecker::pushedOut(const ompl::base::State *state, ompl::base::State *out) const
+{
     const PenetrationEstimate estimate =
         estimatePenetration(*checker_, scene_, poseOfState(state, planar_), *contexts_.borrow());
     if (!estimate.freePose)
         return false;
     // The pushed-out pose as a state: same orientation, new position.
-    si_->copyState(validState, state);
+    si_->copyState(out, state);
     const Vec3 &t = estimate.freePose->translation;
     if (planar_)
-        validState->as<ompl::base::SE2StateSpace::StateType>()->setXY(t.x(), t.y());
+        out->as<ompl::base::SE2StateSpace::StateType>()->setXY(t.x(), t.y());
     else
-        validState->as<ompl::base::SE3StateSpace::StateType>()->setXYZ(t.x(), t.y(), t.z());
-    validStateAvailable = si_->satisfiesBounds(validState) && collisionFree(validState);
-    return false;
+        out->as<ompl::base::SE3StateSpace::StateType>()->setXYZ(t.x(), t.y(), t.z());
+    return si_->satisfiesBounds(out) && collisionFree(out);
 }
 
 bool StateValidityChecker::poseCollides(const RigidTransform &worldFromRobot, QueryContext &context) const

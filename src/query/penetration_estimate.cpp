@@ -10,37 +10,33 @@ namespace hcd
 {
 namespace
 {
-// A contact's two triangles as flat convex pieces in world coordinates (robot placed by `pose`).
-std::pair<ConvexPiece, ConvexPiece> piecesOf(const ContactPair &c, const CollisionScene &scene,
-                                             const RigidTransform &pose)
+using PiecePair = std::pair<ConvexPiece, ConvexPiece>;
+
+// The current intersecting triangle pairs (containment records left out), each as its two
+// triangles' flat convex pieces in world coordinates (robot placed by `pose`). Built once per
+// round: both the deepest pair and the clearing distance read them.
+std::vector<PiecePair> contactPieces(const CollisionChecker &checker, const CollisionScene &scene,
+                                     const RigidTransform &pose, QueryContext &context)
 {
     const TriangleMesh &robot = *scene.robot, &env = *scene.environment;
-    return {
-        ConvexPiece::hullOf({pose.apply(robot.corner(c.robotElement, 0)), pose.apply(robot.corner(c.robotElement, 1)),
-                             pose.apply(robot.corner(c.robotElement, 2))}),
-        ConvexPiece::hullOf({env.corner(c.environmentElement, 0), env.corner(c.environmentElement, 1),
-                             env.corner(c.environmentElement, 2)})};
+    std::vector<PiecePair> pieces;
+    for (const ContactPair &c : checker.contacts(pose, 256, context))
+        if (c.kind == ContactPair::Kind::Triangles)
+            pieces.emplace_back(
+                ConvexPiece::hullOf({pose.apply(robot.corner(c.robotElement, 0)),
+                                     pose.apply(robot.corner(c.robotElement, 1)),
+                                     pose.apply(robot.corner(c.robotElement, 2))}),
+                ConvexPiece::hullOf({env.corner(c.environmentElement, 0), env.corner(c.environmentElement, 1),
+                                     env.corner(c.environmentElement, 2)}));
+    return pieces;
 }
 
-// The current intersecting triangle pairs (containment records left out).
-std::vector<ContactPair> triangleContacts(const CollisionChecker &checker, const RigidTransform &pose,
-                                          QueryContext &context)
-{
-    std::vector<ContactPair> found = checker.contacts(pose, 256, context);
-    found.erase(std::remove_if(found.begin(), found.end(),
-                               [](const ContactPair &c) { return c.kind != ContactPair::Kind::Triangles; }),
-                found.end());
-    return found;
-}
-
-// The deepest pairwise penetration among `contacts` (depth 0 when there are none).
-Penetration deepestPair(const std::vector<ContactPair> &contacts, const CollisionScene &scene,
-                        const RigidTransform &pose)
+// The deepest pairwise penetration among the pairs (depth 0 when there are none).
+Penetration deepestPair(const std::vector<PiecePair> &pairs)
 {
     Penetration deepest;
-    for (const ContactPair &c : contacts)
+    for (const auto &[a, b] : pairs)
     {
-        const auto [a, b] = piecesOf(c, scene, pose);
         const Penetration p = penetrationDepth(a, b);
         if (p.intersecting && (!deepest.intersecting || p.depth > deepest.depth))
             deepest = p;
@@ -48,19 +44,17 @@ Penetration deepestPair(const std::vector<ContactPair> &contacts, const Collisio
     return deepest;
 }
 
-// How far the robot must move along the unit `direction` for every pair in `contacts` to come
-// apart: the largest directional penetration (the LP of section 5 read backwards) over the pairs.
-// Moving the deepest pair's minimum distance alone leaves the other pairs touching, one more
-// round each; this clears them in one step. Pairs that would need more than `limit` (a robot
-// triangle sliding along a long wall in that direction) are left to later rounds: the point is a
-// free pose nearby, not one far away.
-double clearingDistance(const std::vector<ContactPair> &contacts, const CollisionScene &scene,
-                        const RigidTransform &pose, const Vec3 &direction, double limit)
+// How far the robot must move along the unit `direction` for every pair to come apart: the largest
+// directional penetration (the LP of section 5 read backwards) over the pairs. Moving the deepest
+// pair's minimum distance alone leaves the other pairs touching, one more round each; this clears
+// them in one step. Pairs that would need more than `limit` (a robot triangle sliding along a long
+// wall in that direction) are left to later rounds: the point is a free pose nearby, not one far
+// away.
+double clearingDistance(const std::vector<PiecePair> &pairs, const Vec3 &direction, double limit)
 {
     double distance = 0.0;
-    for (const ContactPair &c : contacts)
+    for (const auto &[a, b] : pairs)
     {
-        const auto [a, b] = piecesOf(c, scene, pose);
         const double s = directionalPenetration(a, -direction, b);
         if (s <= limit)
             distance = std::max(distance, s);
@@ -84,8 +78,8 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
         out.freePose = worldFromRobot;
         return out;
     }
-    std::vector<ContactPair> contacts = triangleContacts(checker, worldFromRobot, context);
-    const Penetration first = deepestPair(contacts, scene, worldFromRobot);
+    std::vector<PiecePair> pairs = contactPieces(checker, scene, worldFromRobot, context);
+    const Penetration first = deepestPair(pairs);
     if (!first.intersecting)
         return out;  // contained in a solid: no triangle pair to push out of
     out.depth = first.depth;
@@ -98,16 +92,16 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
     Penetration step = first;
     for (int i = 0; i < maxSteps && step.intersecting; ++i)
     {
-        const double push = std::max(
-            step.depth, clearingDistance(contacts, scene, pose, step.direction, scene.robot->radiusAboutOrigin()));
+        const double push =
+            std::max(step.depth, clearingDistance(pairs, step.direction, scene.robot->radiusAboutOrigin()));
         pose.translation += (push * (1.0 + 1e-6) + 1e-9 * scale) * step.direction;
         if (!checker.collides(pose, context))
         {
             out.freePose = pose;
             return out;
         }
-        contacts = triangleContacts(checker, pose, context);
-        step = deepestPair(contacts, scene, pose);
+        pairs = contactPieces(checker, scene, pose, context);
+        step = deepestPair(pairs);
     }
     return out;
 }

@@ -3,6 +3,7 @@
 #include "support/test_support.h"
 
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/ompl/retraction_sampler.h"
 #include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_catalogue.h"
 
@@ -44,12 +45,14 @@ void expectPathValid(const PlanningProblem &planning, const LoadedProblem &probl
     EXPECT_GT(checked, path.getStateCount());
 }
 
-void solveAndVerify(const std::string &cfg, const std::string &planner, double seconds)
+void solveAndVerify(const std::string &cfg, const std::string &planner, double seconds, bool retraction = false)
 {
     static const bool seeded = (ompl::RNG::setSeed(7), true);  // OMPL accepts a seed only once
     (void)seeded;
     const LoadedProblem problem = loadProblem(cfg);
     PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    if (retraction)
+        useRetractionSampling(planning);
     planning.setup->setPlanner(makePlanner({planner, "", {}}, planning.setup->getSpaceInformation()));
     const auto status = planning.setup->solve(seconds);
     ASSERT_EQ(status, ompl::base::PlannerStatus::EXACT_SOLUTION) << cfg;
@@ -85,4 +88,12 @@ TEST(Solve, ProjectProblems)
     solveAndVerify(test::sourcePath("problems/window_3d.cfg"), "rrtconnect", 60);
     solveAndVerify(test::sourcePath("problems/corridor_2d.cfg"), "rrtconnect", 60);
     solveAndVerify(test::sourcePath("problems/corridor_2d.cfg"), "kpiece", 60);
+}
+// Samples pushed out onto the obstacles' surfaces: paths stay valid.
+TEST(Solve, WithRetractionSampling)
+{
+    solveAndVerify(test::sourcePath("problems/window_3d.cfg"), "rrtconnect", 60, true);
+    solveAndVerify(test::sourcePath("problems/corridor_2d.cfg"), "kpiece", 60, true);
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/Twistycool.cfg");
+    solveAndVerify(cfg, "rrtconnect", 120, true);
 }

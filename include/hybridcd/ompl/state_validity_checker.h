@@ -41,6 +41,12 @@ public:
     bool isValid(const ompl::base::State *state, double &dist) const override;
     using ompl::base::StateValidityChecker::isValid;
 
+    /// For a colliding `state`: writes to `out` a nearby state with the same orientation, pushed out
+    /// along penetration vectors (query/penetration_estimate.h), and returns true when that state is
+    /// verified valid (bounds and collisions). Returns false, with `out` unspecified, when no such
+    /// state was found. A collision-free `state` is copied as it is.
+    bool pushedOut(const ompl::base::State *state, ompl::base::State *out) const;
+
     /// Counted and timed forms of the checker's queries for a pose, for the motion validator,
     /// made with the caller's context (one per thread: see contexts()).
     bool poseCollides(const RigidTransform &worldFromRobot, QueryContext &context) const;
