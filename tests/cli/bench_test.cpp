@@ -51,7 +51,48 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
     ASSERT_EQ(run.status, 0) << run.output;
     const Output stats = shell("cd " + dir + " && ompl_benchmark_statistics small.log -d small.db");
     ASSERT_EQ(stats.status, 0) << stats.output;
-    EXPECT_EQ(summarize(dir + "/small.db"), "geometric_KPIECE1[obb+ccd]|2|0,1;geometric_RRTConnect[obb+ccd]|2|0,1\n");
+    // By default hybridcd's set-up runs beside OMPL.app's (FCL, discrete motion checks at 0.01).
+    EXPECT_EQ(summarize(dir + "/small.db"),
+              "geometric_KPIECE1[fcl+discrete(0.01)]|2|0,1;geometric_KPIECE1[obb+continuous]|2|0,1;"
+              "geometric_RRTConnect[fcl+discrete(0.01)]|2|0,1;geometric_RRTConnect[obb+continuous]|2|0,1\n");
+}
+
+// Planner names "planner[configuration]" of a log, in its order (the lines after "N planners").
+std::string configurationsOf(const std::string &log)
+{
+    return shell("awk '/^[0-9]+ planners$/{n=$1; next} n>0 && /^geometric_/{printf \"%s;\", $0; n--}' " + log).output;
+}
+
+TEST(Bench, ConfigurationsAreCheckerTimesMotionPlusTheOmplAppBaseline)
+{
+    const std::string dir = tempDir();
+    const std::string base = std::string(HYBRIDCD_CLI) + " bench " + hcd::test::sourcePath("problems/corridor_2d.cfg") +
+                             " --planner rrtconnect --runs 1 --time 0.2 --seed 1";
+    const Output both = shell(base + " --checker obb --motion continuous,discrete --out " + dir + "/both.log");
+    ASSERT_EQ(both.status, 0) << both.output;
+    EXPECT_EQ(configurationsOf(dir + "/both.log"),
+              "geometric_RRTConnect[obb+continuous];geometric_RRTConnect[obb+discrete(0.01)];"
+              "geometric_RRTConnect[fcl+discrete(0.01)];");
+    // OMPL.app's set-up asked for by hand is the baseline itself, not a second copy of it.
+    const Output fcl = shell(base + " --checker fcl --motion discrete --out " + dir + "/fcl.log");
+    ASSERT_EQ(fcl.status, 0) << fcl.output;
+    EXPECT_EQ(configurationsOf(dir + "/fcl.log"), "geometric_RRTConnect[fcl+discrete(0.01)];");
+    // Options that change a checker's answers are part of its name; FCL's never change.
+    const Output none = shell(base + " --checker obb --surface-only --baseline none --out " + dir + "/surface.log");
+    ASSERT_EQ(none.status, 0) << none.output;
+    EXPECT_EQ(configurationsOf(dir + "/surface.log"), "geometric_RRTConnect[obb-surface+continuous];");
+    const Output lp =
+        shell(base + " --checker lp --mode approximate --tolerance 0.5 --motion discrete --out " + dir + "/lp.log");
+    ASSERT_EQ(lp.status, 0) << lp.output;
+    EXPECT_EQ(configurationsOf(dir + "/lp.log"),
+              "geometric_RRTConnect[lp-approx(0.5)+discrete(0.01)];geometric_RRTConnect[fcl+discrete(0.01)];");
+
+    for (const char *bad : {" --baseline fcl", " --motion sideways", " --motion ,", " --checker obb,obb"})
+    {
+        const Output r = shell(base + bad + " --out " + dir + "/bad.log");
+        EXPECT_EQ(r.status, 1) << bad << ": " << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/bad.log")) << bad;
+    }
 }
 
 TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
@@ -60,7 +101,7 @@ TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
         HYBRIDCD_SKIP_OR_FAIL_IN_CI("ompl_benchmark_statistics not installed (package ompl-demos)");
     const std::string dir = tempDir();
     const std::string base = std::string(HYBRIDCD_CLI) + " bench " + hcd::test::sourcePath("problems/corridor_2d.cfg") +
-                             " --planner rrtconnect --checker obb,bruteforce --runs 5 --time 1";
+                             " --planner rrtconnect --checker obb,bruteforce --baseline none --runs 5 --time 1";
     for (int shard = 0; shard < 3; ++shard)
     {
         const Output r = shell(base + " --shard " + std::to_string(shard) + "/3 --seed " + std::to_string(shard + 1) +
@@ -73,7 +114,7 @@ TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
               0);
     ASSERT_EQ(shell("cd " + dir + " && ompl_benchmark_statistics whole.log -d whole.db").status, 0);
     const std::string expected =
-        "geometric_RRTConnect[bruteforce+ccd]|5|0,1,2,3,4;geometric_RRTConnect[obb+ccd]|5|0,1,2,3,4\n";
+        "geometric_RRTConnect[bruteforce+continuous]|5|0,1,2,3,4;geometric_RRTConnect[obb+continuous]|5|0,1,2,3,4\n";
     EXPECT_EQ(summarize(dir + "/shards.db"), expected);
     EXPECT_EQ(summarize(dir + "/whole.db"), expected);
     EXPECT_NE(shell(base + " --shard 3/3").status, 0);
