@@ -41,6 +41,20 @@ std::pair<unsigned, unsigned> parseShard(const std::string &text)
     throw UsageError("--shard expects I/N with 0 <= I < N, got '" + text + "'");
 }
 
+// The seed of shard I of N > 1: SplitMix64 of (base seed * 2^32 + I), folded into 1 .. 2^32 - 1
+// (OMPL ignores a seed of 0). One shard (N = 1) keeps the base seed. bench/merge_shards.py
+// recomputes it to check every shard it merges.
+std::uint_fast32_t shardSeed(std::uint_fast32_t base, unsigned index, unsigned count)
+{
+    if (count == 1)
+        return base;
+    std::uint64_t z = ((std::uint64_t(base) << 32) | index) + 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return std::uint_fast32_t(z % 4294967295ULL) + 1;
+}
+
 // One compared configuration: a checker and how motions are checked, with its label.
 struct CheckerSlot
 {
@@ -144,7 +158,8 @@ void declareBench(CommandLine &cl)
         .option("baseline", "omplapp|none",
                 "also run OMPL.app's set-up, fcl+discrete(0.01): FCL and OMPL's DiscreteMotionValidator "
                 "(default omplapp)")
-        .option("seed", "N", "seed OMPL's random numbers (1 to 4294967295)");
+        .option("seed", "N",
+                "seed OMPL's random numbers (1 to 4294967295); shards derive theirs from it (default 1 with --shard)");
     addCheckerOptions(cl, true);
     cl.footer(R"(
 Every --checker runs with every --motion, and OMPL.app's set-up is added as the baseline. Each
@@ -155,15 +170,22 @@ Writes an OMPL benchmark log, readable by ompl_benchmark_statistics.
 Examples:
   hybridcd bench problems/window_3d.cfg --runs 20 --time 10
   hybridcd bench problems/window_3d.cfg --checker obb,hybrid --motion continuous,discrete --runs 20
-  hybridcd bench problems/window_3d.cfg --runs 100 --shard 0/4 --out window.shard0.log
+  hybridcd bench problems/window_3d.cfg --runs 100 --shard 0/4 --seed 7 --out window.shard0.log
+Shard I of N (N > 1) seeds OMPL with SplitMix64(SEED * 2^32 + I) folded into 1..2^32-1, printed
+and written in the log; bench/merge_shards.py merges the shards' logs into one experiment.
 )");
 }
 
 int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
 {
-    if (cl.has("seed"))
-        ompl::RNG::setSeed(seedOf(cl));
     const auto [shardIndex, shardCount] = parseShard(cl.text("shard", "0/1"));
+    // Shards are seeded from one base seed, so that a sharded benchmark is repeatable and no two
+    // shards draw the same samples.
+    const bool seeded = cl.has("seed") || shardCount > 1;
+    const std::uint_fast32_t baseSeed = cl.has("seed") ? seedOf(cl) : 1;
+    const std::uint_fast32_t seed = shardSeed(baseSeed, shardIndex, shardCount);
+    if (seeded)
+        ompl::RNG::setSeed(seed);
     std::vector<CheckerSlot> slots = configurationsOf(cl, checkers);
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
@@ -226,6 +248,14 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     benchmark.addExperimentParameter("shard_index", "INTEGER", std::to_string(shardIndex));
     benchmark.addExperimentParameter("shard_count", "INTEGER", std::to_string(shardCount));
     benchmark.addExperimentParameter("total_runs", "INTEGER", std::to_string(totalRuns));
+    if (seeded)
+    {
+        benchmark.addExperimentParameter("base_seed", "INTEGER", std::to_string(baseSeed));
+        benchmark.addExperimentParameter("shard_seed", "INTEGER", std::to_string(seed));
+    }
+    if (shardCount > 1)
+        std::cout << "shard " << shardIndex << "/" << shardCount << ": seed " << seed << " (derived from base seed "
+                  << baseSeed << ")" << std::endl;
 
     const std::size_t totalThisShard = std::size_t(shardRuns) * slotOf.size();
     std::size_t done = 0;

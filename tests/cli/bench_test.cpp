@@ -104,8 +104,8 @@ TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
                              " --planner rrtconnect --checker obb,bruteforce --baseline none --runs 5 --time 1";
     for (int shard = 0; shard < 3; ++shard)
     {
-        const Output r = shell(base + " --shard " + std::to_string(shard) + "/3 --seed " + std::to_string(shard + 1) +
-                               " --out " + dir + "/shard" + std::to_string(shard) + ".log");
+        const Output r = shell(base + " --shard " + std::to_string(shard) + "/3 --seed 4" + " --out " + dir + "/shard" +
+                               std::to_string(shard) + ".log");
         ASSERT_EQ(r.status, 0) << r.output;
     }
     const Output whole = shell(base + " --out " + dir + "/whole.log");
@@ -118,4 +118,101 @@ TEST(Bench, ShardsSplitRunsWithoutOverlapOrLoss)
     EXPECT_EQ(summarize(dir + "/shards.db"), expected);
     EXPECT_EQ(summarize(dir + "/whole.db"), expected);
     EXPECT_NE(shell(base + " --shard 3/3").status, 0);
+}
+
+namespace
+{
+// "name|runcount" per experiment of a database, then summarize()'s planner rows.
+std::string experimentsOf(const std::string &db)
+{
+    const std::string py = "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); "
+                           "print(';'.join('%s|%d'%r for r in c.execute('select name, runcount from experiments')))";
+    return shell("python3 -c \"" + py + "\" " + db).output + summarize(db);
+}
+}  // namespace
+
+TEST(Bench, ShardsUnderGnuParallelAndSlurmMergeIntoTheUnshardedExperiment)
+{
+    if (!haveStatisticsScript())
+        HYBRIDCD_SKIP_OR_FAIL_IN_CI("ompl_benchmark_statistics not installed (package ompl-demos)");
+    if (shell("command -v parallel").status != 0)
+        HYBRIDCD_SKIP_OR_FAIL_IN_CI("GNU parallel not installed (package parallel)");
+    const std::string dir = tempDir() + "/sharded";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string cli = HYBRIDCD_CLI;
+    const std::string merge = "python3 " + hcd::test::sourcePath("bench/merge_shards.py");
+    const std::string options = " --planner rrtconnect,kpiece --runs 5 --time 0.3 --seed 5";
+    const std::string cfg = hcd::test::sourcePath("problems/corridor_2d.cfg");
+
+    const Output whole = shell(cli + " bench " + cfg + options + " --out " + dir + "/whole.log");
+    ASSERT_EQ(whole.status, 0) << whole.output;
+    ASSERT_EQ(shell("ompl_benchmark_statistics " + dir + "/whole.log -d " + dir + "/whole.db").status, 0);
+    const std::string expected = experimentsOf(dir + "/whole.db");
+    ASSERT_EQ(expected,
+              "corridor_2d|5\n"
+              "geometric_KPIECE1[fcl+discrete(0.01)]|5|0,1,2,3,4;geometric_KPIECE1[obb+continuous]|5|0,1,2,3,4;"
+              "geometric_RRTConnect[fcl+discrete(0.01)]|5|0,1,2,3,4;"
+              "geometric_RRTConnect[obb+continuous]|5|0,1,2,3,4\n");
+
+    // Three shards side by side under GNU parallel (-S 2/: is parallel's local "ssh login", two jobs).
+    const Output sharded = shell("parallel -S 2/: --halt now,fail=1 " + cli + " bench " + cfg + options +
+                                 " --shard {}/3 --out " + dir + "/p{}.log ::: 0 1 2");
+    ASSERT_EQ(sharded.status, 0) << sharded.output;
+    const std::string shards = " " + dir + "/p0.log " + dir + "/p1.log " + dir + "/p2.log";
+    const Output merged = shell(merge + " --out " + dir + "/p.log --db " + dir + "/p.db" + shards);
+    ASSERT_EQ(merged.status, 0) << merged.output;
+    EXPECT_EQ(experimentsOf(dir + "/p.db"), expected);
+    // Each shard's seed is derived from the base seed and printed; the merged log keeps them all.
+    EXPECT_NE(sharded.output.find("shard 1/3: seed "), std::string::npos) << sharded.output;
+    EXPECT_EQ(shell("grep -c '^5 is the random seed$' " + dir + "/p.log").output, "1\n");
+    EXPECT_EQ(shell("grep -c '^shard_seeds VARCHAR(1024) = [0-9]*,[0-9]*,[0-9]*$' " + dir + "/p.log").output, "1\n");
+
+    // The same shards as a SLURM job array, each task run by hand as SLURM would run it.
+    const std::string sbatch = hcd::test::sourcePath("bench/slurm/bench_array.sbatch");
+    ASSERT_EQ(shell("bash -n " + sbatch).status, 0);
+    for (int task = 0; task < 3; ++task)
+    {
+        const Output r =
+            shell("SLURM_ARRAY_TASK_ID=" + std::to_string(task) +
+                  " SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=2 SLURM_ARRAY_TASK_COUNT=3 HYBRIDCD=" + cli + " bash " +
+                  sbatch + " " + dir + "/slurm " + cfg + options);
+        ASSERT_EQ(r.status, 0) << r.output;
+    }
+    const Output slurm = shell(merge + " --out " + dir + "/s.log --db " + dir + "/s.db " + dir + "/slurm/shard*.log");
+    ASSERT_EQ(slurm.status, 0) << slurm.output;
+    EXPECT_EQ(experimentsOf(dir + "/s.db"), expected);
+    // The same seeds whichever engine ran the shards.
+    EXPECT_EQ(shell("grep shard_seeds " + dir + "/s.log").output, shell("grep shard_seeds " + dir + "/p.log").output);
+
+    // Shards that do not make one benchmark are refused, naming the file, and nothing is written.
+    const Output reseeded =
+        shell(cli + " bench " + cfg + " --planner rrtconnect,kpiece --runs 5 --time 0.3 --seed 6 --shard 2/3 --out " +
+              dir + "/other2.log");
+    ASSERT_EQ(reseeded.status, 0) << reseeded.output;
+    ASSERT_EQ(
+        shell("sed 's/^[0-9]* is the random seed$/123 is the random seed/' " + dir + "/p2.log > " + dir + "/seed2.log")
+            .status,
+        0);
+    const struct
+    {
+        std::string shards, message;
+    } bad[] = {
+        {dir + "/p0.log " + dir + "/p1.log", "shards 2 of 3 are missing"},
+        {dir + "/p0.log " + dir + "/p1.log " + dir + "/p1.log", "p1.log: shard 1/3 is also"},
+        {dir + "/p0.log " + dir + "/p1.log " + dir + "/other2.log", "other2.log:4: experiment property base_seed"},
+        {dir + "/p0.log " + dir + "/p1.log " + dir + "/seed2.log", "seed2.log:"},
+        {dir + "/p0.log " + dir + "/p1.log " + dir + "/seed2.log",
+         ": seed 123, but shard 2/3 of base seed 5 is seeded with"},
+        {dir + "/p0.log " + dir + "/p1.log " + dir + "/whole.log",
+         "whole.log:7: experiment property shard_count INTEGER is 1 here, 3 in"},
+        {dir + "/p0.log " + dir + "/p1.log /no/such.log", "/no/such.log: cannot read"},
+    };
+    for (const auto &b : bad)
+    {
+        const Output r = shell(merge + " --out " + dir + "/bad.log " + b.shards);
+        EXPECT_EQ(r.status, 1) << b.shards << ": " << r.output;
+        EXPECT_NE(r.output.find(b.message), std::string::npos) << b.shards << ": " << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/bad.log")) << b.shards;
+    }
 }
