@@ -26,7 +26,9 @@ std::string fixed(double value, int digits)
 }  // namespace
 
 SolveProgress::SolveProgress(PlanningProblem &planning, std::ostream &out, Options options)
-    : planning_(planning), out_(out), options_(options)
+    : planning_(planning),
+      out_(out),
+      options_(options)
 {
 }
 
@@ -47,7 +49,8 @@ ompl::base::PlannerTerminationCondition SolveProgress::start()
 {
     // Optimizing planners report each better solution from their own thread.
     planning_.setup->getProblemDefinition()->setIntermediateSolutionCallback(
-        [this](const ompl::base::Planner *, const std::vector<const ompl::base::State *> &, const ompl::base::Cost cost) {
+        [this](const ompl::base::Planner *, const std::vector<const ompl::base::State *> &,
+               const ompl::base::Cost cost) {
             counters_.bestCost.store(cost.value());
             counters_.improvements.fetch_add(1);
         });
@@ -65,8 +68,8 @@ ompl::base::PlannerTerminationCondition SolveProgress::start()
 std::string SolveProgress::status(double elapsed) const
 {
     std::ostringstream s;
-    s << counters_.iterations.load(std::memory_order_relaxed) << " iterations, "
-      << planning_.validity->checkCount() << " collision checks";
+    s << counters_.iterations.load(std::memory_order_relaxed) << " iterations, " << planning_.validity->checkCount()
+      << " collision checks";
     if (planning_.continuousValidator)
         s << ", " << planning_.continuousValidator->validMotions() + planning_.continuousValidator->invalidMotions()
           << " motions certified or refused";
@@ -94,8 +97,9 @@ void SolveProgress::report()
             const int width = 20;
             const int filled = int(width * std::min(1.0, elapsed / options_.timeLimit));
             // \r and "erase to the end of the line": the bar is redrawn in place.
-            out_ << "\r\033[K[" << std::string(std::size_t(filled), '#') << std::string(std::size_t(width - filled), '.')
-                 << "] " << fixed(elapsed, 1) << "/" << options_.timeLimit << " s, " << status(elapsed) << std::flush;
+            out_ << "\r\033[K[" << std::string(std::size_t(filled), '#')
+                 << std::string(std::size_t(width - filled), '.') << "] " << fixed(elapsed, 1) << "/"
+                 << options_.timeLimit << " s, " << status(elapsed) << std::flush;
         }
         else
             out_ << "solve: " << fixed(elapsed, 1) << " s of " << options_.timeLimit << ", " << status(elapsed)

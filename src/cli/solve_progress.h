@@ -38,10 +38,10 @@ class SolveProgress
 public:
     struct Options
     {
-        double timeLimit = 10.0;        ///< seconds, as given to solve
-        bool quiet = false;             ///< nothing is printed at all
-        bool terminal = false;          ///< one bar rewritten in place instead of a line per period
-        double periodSeconds = 1.0;     ///< between two lines (a bar is redrawn 5 times as often)
+        double timeLimit = 10.0;     ///< seconds, as given to solve
+        bool quiet = false;          ///< nothing is printed at all
+        bool terminal = false;       ///< one bar rewritten in place instead of a line per period
+        double periodSeconds = 1.0;  ///< between two lines (a bar is redrawn 5 times as often)
     };
 
     SolveProgress(PlanningProblem &planning, std::ostream &out, Options options);
