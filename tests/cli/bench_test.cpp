@@ -60,6 +60,17 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
     EXPECT_EQ(summarize(dir + "/small.db"),
               "geometric_KPIECE1[fcl+discrete(0.01)]|2|0,1;geometric_KPIECE1[obb+continuous]|2|0,1;"
               "geometric_RRTConnect[fcl+discrete(0.01)]|2|0,1;geometric_RRTConnect[obb+continuous]|2|0,1\n");
+    // The baseline really ran OMPL's DiscreteMotionValidator, whose motion counters give OMPL's
+    // "valid segment fraction" (hybridcd's validator keeps its own, so OMPL's reads 0), at the
+    // resolution 0.01 every configuration records among its settings.
+    const std::string py =
+        "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); "
+        "print(';'.join('%s|%d|%d' % r for r in c.execute('select p.name, min(r.valid_segment_fraction > 0), "
+        "p.settings like \\'%longest_valid_segment_fraction = 0.01%\\' from runs r join plannerConfigs p on "
+        "r.plannerid = p.id group by p.name order by p.name')))";
+    EXPECT_EQ(shell("python3 -c \"" + py + "\" " + dir + "/small.db").output,
+              "geometric_KPIECE1[fcl+discrete(0.01)]|1|1;geometric_KPIECE1[obb+continuous]|0|1;"
+              "geometric_RRTConnect[fcl+discrete(0.01)]|1|1;geometric_RRTConnect[obb+continuous]|0|1\n");
 }
 
 // Planner names "planner[configuration]" of a log, in its order (the lines after "N planners").
