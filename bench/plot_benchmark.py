@@ -129,7 +129,8 @@ def plot(experiment, planners, limit, out_dir, formats):
     fig.legend(handles, [c or "(no configuration)" for c in configurations], loc="upper center",
                ncol=min(4, len(configurations)), fontsize=8, frameon=False, bbox_to_anchor=(0.5, 0.965))
     runs = max(len(planners[p]["solved"]) for p in names)
-    fig.suptitle("%s: %d runs per planner and configuration" % (experiment, runs), fontsize=11)
+    fig.suptitle("%s: %d run%s per planner and configuration" % (experiment, runs, "s" if runs != 1 else ""),
+                 fontsize=11)
     fig.tight_layout(rect=(0, 0, 1, 0.93))
     written = []
     for fmt in formats:
