@@ -201,8 +201,12 @@ TEST(Cli, SolveReportsProgressAndLabelsAnApproximatePath)
     // A line a second with the elapsed time, the iterations and the collision checks, then a summary.
     const std::vector<double> elapsed = numbersAfter(progress, "solve: ");
     ASSERT_GE(elapsed.size(), 2u) << progress;
-    EXPECT_NEAR(elapsed[0], 1.0, 0.3) << progress;
-    EXPECT_NEAR(elapsed[1], 2.0, 0.3) << progress;
+    // Lines are due at whole seconds from the start; a loaded machine may only print them late.
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+        EXPECT_GE(elapsed[i], double(i) + 0.95) << progress;
+        EXPECT_LT(elapsed[i], double(i) + 1.6) << progress;
+    }
     EXPECT_NE(progress.find(" s of 2.5, "), std::string::npos) << progress;
     const std::vector<double> checks = numbersAfter(progress, "iterations, ");
     ASSERT_GE(checks.size(), 3u) << progress;
