@@ -65,7 +65,7 @@ ompl::base::PlannerTerminationCondition SolveProgress::start()
     });
 }
 
-std::string SolveProgress::status(double elapsed) const
+std::string SolveProgress::status() const
 {
     std::ostringstream s;
     s << counters_.iterations.load(std::memory_order_relaxed) << " iterations, " << planning_.validity->checkCount()
@@ -75,9 +75,8 @@ std::string SolveProgress::status(double elapsed) const
           << " motions certified or refused";
     if (counters_.improvements.load() > 0)
         s << ", best cost " << counters_.bestCost.load() << " (" << counters_.improvements.load() << " improvements)";
-    const double checkSeconds = planning_.validity->checkSeconds();
-    if (elapsed > 0.0)
-        s << ", " << fixed(100.0 * std::min(1.0, checkSeconds / elapsed), 0) << "% of the time in collision checks";
+    // Summed over the planner's threads: a parallel planner may spend more than the elapsed time.
+    s << ", " << fixed(planning_.validity->checkSeconds(), 2) << " s in collision checks";
     return s.str();
 }
 
@@ -99,11 +98,10 @@ void SolveProgress::report()
             // \r and "erase to the end of the line": the bar is redrawn in place.
             out_ << "\r\033[K[" << std::string(std::size_t(filled), '#')
                  << std::string(std::size_t(width - filled), '.') << "] " << fixed(elapsed, 1) << "/"
-                 << options_.timeLimit << " s, " << status(elapsed) << std::flush;
+                 << options_.timeLimit << " s, " << status() << std::flush;
         }
         else
-            out_ << "solve: " << fixed(elapsed, 1) << " s of " << options_.timeLimit << ", " << status(elapsed)
-                 << std::endl;
+            out_ << "solve: " << fixed(elapsed, 1) << " s of " << options_.timeLimit << ", " << status() << std::endl;
     }
 }
 
@@ -121,6 +119,6 @@ void SolveProgress::finish(const std::string &outcome)
         return;
     if (options_.terminal)
         out_ << "\r\033[K";
-    out_ << "solve: " << outcome << " after " << fixed(elapsed, 2) << " s: " << status(elapsed) << std::endl;
+    out_ << "solve: " << outcome << " after " << fixed(elapsed, 2) << " s: " << status() << std::endl;
 }
 }  // namespace hcd::cli

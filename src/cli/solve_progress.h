@@ -58,7 +58,7 @@ public:
     const SolveCounters &counters() const { return counters_; }
 
 private:
-    std::string status(double elapsed) const;
+    std::string status() const;
     void report();
 
     PlanningProblem &planning_;
