@@ -3,13 +3,16 @@
 """Summarises an OMPL benchmark database (from ompl_benchmark_statistics) as a Markdown table:
 per experiment and planner[checker], runs, success rate, median solve time, median collision
 checks and time in collision checking, and the ratio of median solve time to the same planner
-with FCL (OMPL.app's configuration: discrete motion checks) on the same problem.
+in OMPL.app's set-up (FCL, OMPL's DiscreteMotionValidator at resolution 0.01: the configuration
+`hybridcd bench` names fcl+discrete(0.01)) on the same problem.
 
     python3 bench/summarize_benchmark.py results.db
 """
 import sqlite3
 import statistics
 import sys
+
+BASELINE = "fcl+discrete(0.01)"
 
 
 def main(path):
@@ -26,11 +29,12 @@ def main(path):
     def median_time(rows):
         return statistics.median(t for _, t, _, _ in rows)
 
-    print("| problem | planner[checker] | runs | solved | median solve s | vs fcl | median checks | median check s |")
+    print("| problem | planner[configuration] | runs | solved | median solve s | vs OMPL.app | median checks "
+          "| median check s |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
     for (experiment, planner), rows in sorted(groups.items()):
         base = planner.split("[")[0]
-        fcl = groups.get((experiment, base + "[fcl]"))
+        fcl = groups.get((experiment, base + "[" + BASELINE + "]"))
         ratio = "%.2f" % (median_time(rows) / median_time(fcl)) if fcl and median_time(fcl) > 0 else "-"
         solved = sum(1 for s, _, _, _ in rows if s) / len(rows)
         checks = statistics.median(c for _, _, c, _ in rows) if has_checks else float("nan")

@@ -18,6 +18,8 @@ packages=(
   clang-format
   # The Python module and its test.
   pybind11-dev python3-dev python3-numpy
+  # Benchmark shards run side by side or over ssh (bench/README.md), and their plots.
+  parallel python3-matplotlib
 )
 if [ "${1:-}" = "--fuzz" ]; then
   packages+=(clang libclang-rt-14-dev)

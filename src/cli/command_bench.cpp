@@ -41,42 +41,152 @@ std::pair<unsigned, unsigned> parseShard(const std::string &text)
     throw UsageError("--shard expects I/N with 0 <= I < N, got '" + text + "'");
 }
 
+// The seed of shard I of N > 1: SplitMix64 of (base seed * 2^32 + I), folded into 1 .. 2^32 - 1
+// (OMPL ignores a seed of 0). One shard (N = 1) keeps the base seed. bench/merge_shards.py
+// recomputes it to check every shard it merges.
+std::uint_fast32_t shardSeed(std::uint_fast32_t base, unsigned index, unsigned count)
+{
+    if (count == 1)
+        return base;
+    std::uint64_t z = ((std::uint64_t(base) << 32) | index) + 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return std::uint_fast32_t(z % 4294967295ULL) + 1;
+}
+
+// One compared configuration: a checker and how motions are checked, with its label.
 struct CheckerSlot
 {
-    std::string name;
-    std::shared_ptr<const CollisionChecker> checker;
+    std::string checker;  // the catalogue name
+    MotionCheck motion = MotionCheck::Continuous;
+    CheckerOptions options;
+    std::string label;  // "obb+continuous", "fcl+discrete(0.01)": unique within a benchmark
+    std::shared_ptr<const CollisionChecker> instance;
     std::shared_ptr<StateValidityChecker> validity;
 };
+
+// OMPL's default validity-checking resolution (a fraction of the state space's extent), which
+// OMPL.app leaves unchanged: every configuration of a benchmark runs at it, set explicitly.
+constexpr double kResolution = 0.01;
+
+std::string shortNumber(double value)
+{
+    std::ostringstream s;
+    s << value;
+    return s.str();
+}
+
+// The configuration's name in the log: the checker, its options when they change its answers, and
+// the motion check with its resolution, so that merged logs never mix two set-ups under one name.
+std::string labelOf(const CheckerEntry &entry, const CheckerOptions &options, MotionCheck motion)
+{
+    std::string label = entry.name;
+    if (!entry.keepsOwnSemantics && options.semantics == ContactSemantics::SurfaceOnly)
+        label += "-surface";
+    if (options.approximateTolerance)
+        label += "-approx(" + shortNumber(*options.approximateTolerance) + ")";
+    return label + (motion == MotionCheck::Continuous ? "+continuous" : "+discrete(" + shortNumber(kResolution) + ")");
+}
+
+std::vector<MotionCheck> motionsOf(const CommandLine &cl)
+{
+    std::vector<MotionCheck> motions;
+    for (const std::string &name : splitList(cl.text("motion", "continuous")))
+        try
+        {
+            motions.push_back(parseMotionCheck(name));
+        }
+        catch (const std::invalid_argument &)
+        {
+            throw UsageError("option --motion expects continuous, discrete or both (comma-separated), got '" + name +
+                             "'");
+        }
+    if (motions.empty())
+        throw UsageError("option --motion needs continuous, discrete or both");
+    return motions;
+}
+
+// The checker/motion pairs to compare: every --checker with every --motion, then OMPL.app's own
+// set-up (FCL state checks, OMPL's DiscreteMotionValidator) unless --baseline none or already listed.
+std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCatalogue &checkers)
+{
+    const CheckerOptions options = checkerOptionsOf(cl);
+    const std::vector<std::string> names = checkerNamesOf(cl, checkers, options);
+    const std::vector<MotionCheck> motions = motionsOf(cl);
+    const std::string baseline = cl.text("baseline", "omplapp");
+    if (baseline != "omplapp" && baseline != "none")
+        throw UsageError("option --baseline expects omplapp or none, got '" + baseline + "'");
+
+    std::vector<CheckerSlot> slots;
+    for (const std::string &name : names)
+        for (const MotionCheck motion : motions)
+        {
+            const std::string label = labelOf(*checkers.find(name), options, motion);
+            for (const CheckerSlot &s : slots)
+                if (s.label == label)
+                    throw UsageError("the configuration " + label + " is given twice");
+            slots.push_back({name, motion, options, label, nullptr, nullptr});
+        }
+    if (baseline == "omplapp")
+    {
+        const CheckerEntry *fcl = checkers.find("fcl");
+        if (!fcl)
+            throw UsageError("--baseline omplapp needs the fcl checker, which this build lacks; use --baseline none");
+        const std::string label = labelOf(*fcl, {}, MotionCheck::Discrete);
+        bool listed = false;
+        for (const CheckerSlot &s : slots)
+            listed = listed || s.label == label;
+        if (!listed)
+            slots.push_back({"fcl", MotionCheck::Discrete, {}, label, nullptr, nullptr});
+    }
+    return slots;
+}
 }  // namespace
 
 void declareBench(CommandLine &cl)
 {
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format); its [benchmark] section gives the defaults")
         .option("planner", "NAME[,NAME...]", "the planners (default: the .cfg's, else rrtconnect)")
-        .option("runs", "N", "runs per planner and checker (default: the .cfg's run_count)")
+        .option("runs", "N", "runs per planner and configuration (default: the .cfg's run_count)")
         .option("time", "SECONDS", "time limit per run (default: the .cfg's time_limit)")
         .option("memory", "MB", "memory limit per run (default: the .cfg's mem_limit)")
         .option("shard", "I/N", "do only the runs whose index is I modulo N (0 <= I < N)")
         .option("out", "FILE.log", "the benchmark log (default NAME.log, or NAME.shardI.log)")
-        .option("motion", "continuous|discrete", "how motions are checked (default continuous)")
-        .option("seed", "N", "seed OMPL's random numbers (1 to 4294967295)");
+        .option("motion", "continuous|discrete[,...]",
+                "how the --checker checkers check motions; both gives both (default continuous)")
+        .option("baseline", "omplapp|none",
+                "also run OMPL.app's set-up, fcl+discrete(0.01): FCL and OMPL's DiscreteMotionValidator "
+                "(default omplapp)")
+        .option("seed", "N",
+                "seed OMPL's random numbers (1 to 4294967295); shards derive theirs from it (default 1 with --shard)");
     addCheckerOptions(cl, true);
     cl.footer(R"(
+Every --checker runs with every --motion, and OMPL.app's set-up is added as the baseline. Each
+configuration is named in the log after its checker and motion check, e.g.
+RRTConnect[obb+continuous], RRTConnect[obb+discrete(0.01)], RRTConnect[fcl+discrete(0.01)]
+(OMPL.app: FCL, OMPL's DiscreteMotionValidator at resolution 0.01).
 Writes an OMPL benchmark log, readable by ompl_benchmark_statistics.
 Examples:
-  hybridcd bench problems/window_3d.cfg --checker obb,fcl --runs 20 --time 10
-  hybridcd bench problems/window_3d.cfg --runs 100 --shard 0/4 --out window.shard0.log
+  hybridcd bench problems/window_3d.cfg --runs 20 --time 10
+  hybridcd bench problems/window_3d.cfg --checker obb,hybrid --motion continuous,discrete --runs 20
+  hybridcd bench problems/window_3d.cfg --runs 100 --shard 0/4 --seed 7 --out window.shard0.log
+Shard I of N (N > 1) seeds OMPL with SplitMix64(SEED * 2^32 + I) folded into 1..2^32-1, printed
+and written in the log; bench/merge_shards.py merges the shards' logs into one experiment.
 )");
 }
 
 int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
 {
-    if (cl.has("seed"))
-        ompl::RNG::setSeed(seedOf(cl));
-    const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));
     const auto [shardIndex, shardCount] = parseShard(cl.text("shard", "0/1"));
-    const CheckerOptions checkerOptions = checkerOptionsOf(cl);
-    const std::vector<std::string> checkerNames = checkerNamesOf(cl, checkers, checkerOptions);
+    // Shards are seeded from one base seed, so that a sharded benchmark is repeatable and no two
+    // shards draw the same samples.
+    const bool seeded = cl.has("seed") || shardCount > 1;
+    const std::uint_fast32_t baseSeed = cl.has("seed") ? seedOf(cl) : 1;
+    const std::uint_fast32_t seed = shardSeed(baseSeed, shardIndex, shardCount);
+    if (seeded)
+        ompl::RNG::setSeed(seed);
+    std::vector<CheckerSlot> slots = configurationsOf(cl, checkers);
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
 
@@ -104,49 +214,65 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     if (requests.empty())
         requests.push_back({"rrtconnect", "", {}});
 
-    std::vector<CheckerSlot> slots;
-    for (const std::string &name : checkerNames)
-        slots.push_back({name, checkers.make(name, problem.scene, checkerOptions), nullptr});
-
-    PlanningProblem planning = makePlanningProblem(problem, slots.front().checker, motion);
-    requireCollisionFreeStartAndGoal(problem, planning);
     for (CheckerSlot &slot : slots)
-        slot.validity = installChecker(planning, problem, slot.checker, motion);
+        slot.instance = checkers.make(slot.checker, problem.scene, slot.options);
+
+    PlanningProblem planning = makePlanningProblem(problem, slots.front().instance, slots.front().motion);
+    planning.setup->getSpaceInformation()->setStateValidityCheckingResolution(kResolution);
+    // Every configuration must see a free start and goal: FCL calls a robot inside a closed
+    // obstacle free, the solid checkers do not.
+    for (CheckerSlot &slot : slots)
+    {
+        slot.validity = installChecker(planning, problem, slot.instance, slot.motion);
+        requireCollisionFreeStartAndGoal(problem, planning);
+    }
 
     ompl::tools::Benchmark benchmark(*planning.setup, cfg.name);
     std::map<const ompl::base::Planner *, std::size_t> slotOf;
+    std::string labels;
     for (std::size_t c = 0; c < slots.size(); ++c)
+    {
+        labels += (c ? "," : "") + slots[c].label;
         for (const PlannerRequest &request : requests)
         {
             ompl::base::PlannerPtr planner = makePlanner(request, planning.setup->getSpaceInformation());
-            // The checker (and continuous motion checking) in the name keeps configurations apart when
-            // several logs are merged into one database.
-            planner->setName(planner->getName() + "[" + slots[c].name +
-                             (motion == MotionCheck::Continuous ? "+ccd" : "") + "]");
+            // The configuration in the name keeps set-ups apart when logs are merged into one database.
+            planner->setName(planner->getName() + "[" + slots[c].label + "]");
             slotOf[planner.get()] = c;
             benchmark.addPlanner(planner);
         }
-    benchmark.addExperimentParameter("checkers", "VARCHAR(256)", cl.text("checker", "obb"));
-    benchmark.addExperimentParameter("motion_check", "VARCHAR(32)", cl.text("motion", "continuous"));
+    }
+    benchmark.addExperimentParameter("configurations", "VARCHAR(512)", labels);
+    benchmark.addExperimentParameter("baseline", "VARCHAR(64)",
+                                     cl.text("baseline", "omplapp") == "omplapp" ? "fcl+discrete(0.01)" : "none");
     benchmark.addExperimentParameter("shard_index", "INTEGER", std::to_string(shardIndex));
     benchmark.addExperimentParameter("shard_count", "INTEGER", std::to_string(shardCount));
     benchmark.addExperimentParameter("total_runs", "INTEGER", std::to_string(totalRuns));
+    if (seeded)
+    {
+        benchmark.addExperimentParameter("base_seed", "INTEGER", std::to_string(baseSeed));
+        benchmark.addExperimentParameter("shard_seed", "INTEGER", std::to_string(seed));
+    }
+    if (shardCount > 1)
+        std::cout << "shard " << shardIndex << "/" << shardCount << ": seed " << seed << " (derived from base seed "
+                  << baseSeed << ")" << std::endl;
 
     const std::size_t totalThisShard = std::size_t(shardRuns) * slotOf.size();
     std::size_t done = 0;
     std::map<const ompl::base::Planner *, unsigned> runsSoFar;
     benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) {
-        // Point the space at this planner's checker and zero its counters.
-        const CheckerSlot &slot = slots[slotOf.at(planner.get())];
-        installChecker(planning, problem, slot.checker, motion)->resetCounters();
-        slots[slotOf.at(planner.get())].validity = planning.validity;
+        // Point the space at this configuration's checker and motion validator, and zero its counters.
+        CheckerSlot &slot = slots[slotOf.at(planner.get())];
+        slot.validity = installChecker(planning, problem, slot.instance, slot.motion);
+        slot.validity->resetCounters();
     });
     benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &run) {
         const CheckerSlot &slot = slots[slotOf.at(planner.get())];
         const unsigned local = runsSoFar[planner.get()]++;
         run["collision checks INTEGER"] = std::to_string(slot.validity->checkCount());
         run["collision checking time REAL"] = std::to_string(slot.validity->checkSeconds());
-        run["checker VARCHAR(32)"] = slot.name;
+        run["checker VARCHAR(32)"] = slot.checker;
+        run["configuration VARCHAR(64)"] = slot.label;
         run["run index INTEGER"] = std::to_string(shardIndex + std::size_t(local) * shardCount);
         ++done;
         std::cerr << "\r[" << done << "/" << totalThisShard << "] " << planner->getName() << " run " << local + 1 << "/"
@@ -161,8 +287,8 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     if (!benchmark.saveResultsToStream(log.stream()))
         throw InputError(out, 0, "cannot write the benchmark log");
     log.commit();
-    std::cout << "benchmark log written to: " << out << " (" << slotOf.size() << " planner/checker pairs, " << shardRuns
-              << " runs each)\n";
+    std::cout << "benchmark log written to: " << out << " (" << slotOf.size() << " planner/configuration pairs, "
+              << shardRuns << " runs each; configurations: " << labels << ")\n";
     return kSuccess;
 }
 }  // namespace hcd::cli

@@ -3,6 +3,7 @@
 #include "command_line.h"
 #include "commands.h"
 #include "problem_checks.h"
+#include "solve_progress.h"
 
 #include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
@@ -19,6 +20,7 @@
 #include <chrono>
 #include <iostream>
 #include <sstream>
+#include <unistd.h>
 
 namespace hcd::cli
 {
@@ -55,7 +57,8 @@ void declareSolve(CommandLine &cl)
         .option("sampler", "uniform|retraction",
                 "state sampling (default uniform); retraction pushes colliding samples out onto the "
                 "obstacles' surfaces, where narrow passages are")
-        .flag("verbose", "OMPL's progress messages");
+        .flag("verbose", "OMPL's progress messages")
+        .flag("quiet", "no progress on stderr (default: a line a second, or a bar on a terminal)");
     addCheckerOptions(cl, false);
     cl.footer(R"(
 Examples:
@@ -105,8 +108,17 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
 
-    const ompl::base::PlannerStatus status = planning.setup->solve(timeLimit);
+    SolveProgress::Options progressOptions;
+    progressOptions.timeLimit = timeLimit;
+    progressOptions.quiet = cl.has("quiet");
+    progressOptions.terminal = ::isatty(STDERR_FILENO) == 1;
+    SolveProgress progress(planning, std::cerr, progressOptions);
+    const ompl::base::PlannerStatus status = planning.setup->solve(progress.start());
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
+    // OMPL keeps the path that ends nearest the goal when it finds no exact one.
+    const bool approximate =
+        status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION && planning.setup->haveSolutionPath();
+    progress.finish(solved ? "exact solution" : approximate ? "approximate solution only" : "no solution");
     const double solveSeconds = planning.setup->getLastPlanComputationTime();
     const std::uint64_t checks = planning.validity->checkCount();
     const double checkSeconds = planning.validity->checkSeconds();
@@ -116,17 +128,24 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
               << "planner: " << planning.setup->getPlanner()->getName() << '\n'
               << "motion check: " << cl.text("motion", "continuous") << '\n'
               << "sampler: " << sampling << '\n'
-              << "solved: " << (solved ? "yes" : "no") << " (" << status.asString() << ")\n"
+              << "solved: "
+              << (solved        ? "yes"
+                  : approximate ? "no, approximate path only"
+                                : "no")
+              << " (" << status.asString() << ")\n"
               << "solve time: " << solveSeconds << " s\n"
               << "collision checks: " << checks << '\n'
               << "collision checking time: " << checkSeconds << " s"
               << (checks ? " (" + std::to_string(1e9 * checkSeconds / double(checks)) + " ns per check)" : "") << '\n';
-    if (!solved)
+    if (!solved && !approximate)
         return kNotSolved;
 
     planning.setup->simplifySolution();
     ompl::geometric::PathGeometric &path = planning.setup->getSolutionPath();
+    const double goalDistance = planning.setup->getProblemDefinition()->getSolutionDifference();
     std::cout << "simplified path length: " << path.length() << '\n' << "path states: " << path.getStateCount() << '\n';
+    if (approximate)
+        std::cout << "approximate path: ends " << goalDistance << " from the goal (OMPL's goal distance)\n";
     // Written densely, as OMPL.app's sample paths are: states at OMPL's validity resolution, so a
     // reader that interpolates consecutive states another way stays close to the certified motion.
     path.interpolate();
@@ -138,7 +157,15 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     AtomicFile out(outPath);
     writePoses(out.stream(), rows);
     out.commit();
-    std::cout << "path written to: " << outPath << '\n';
-    return kSuccess;
+    if (!approximate)
+    {
+        std::cout << "path written to: " << outPath << '\n';
+        return kSuccess;
+    }
+    // The .path file stays bare poses (OMPL.app reads it so); the label is in the output and the status.
+    std::cout << "APPROXIMATE path written to: " << outPath << '\n';
+    std::cerr << "hybridcd: warning: no exact solution in " << timeLimit << " s; " << outPath
+              << " holds an APPROXIMATE path, which ends " << goalDistance << " from the goal (exit status 2)\n";
+    return kNotSolved;
 }
 }  // namespace hcd::cli

@@ -30,6 +30,6 @@ enum ExitStatus
 {
     kSuccess = 0,
     kBadInput = 1,   ///< unreadable or malformed input, unknown names, misuse
-    kNotSolved = 2,  ///< the planner found no exact solution in time
+    kNotSolved = 2,  ///< no exact solution in time (solve may have written an approximate path)
 };
 }  // namespace hcd::cli

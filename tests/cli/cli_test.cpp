@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -134,7 +135,115 @@ TEST(Cli, NoPathInTimeExitsTwo)
     const CliRun r = run("solve " + problem3d() + " --seed 1 --time 0.0001 --out " + out);
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("solved: no"), std::string::npos) << r.output;
-    EXPECT_FALSE(std::ifstream(out).good()) << "no path file is written when nothing was solved";
+    EXPECT_FALSE(std::ifstream(out).good()) << "no path file is written when nothing was found";
+}
+
+namespace
+{
+std::string fileText(const std::string &path)
+{
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// window_3d with its window closed by one more box: start and goal lie in two sealed rooms.
+std::string sealedWindowProblem()
+{
+    std::string env = fileText(test::sourcePath("problems/window_3d_env.obj"));
+    int vertices = 0;
+    std::istringstream lines(env);
+    for (std::string line; std::getline(lines, line);)
+        vertices += line.rfind("v ", 0) == 0;
+    const double lo[3] = {-2, -10, 15}, hi[3] = {2, 10, 35};
+    std::ostringstream box;
+    for (int c = 0; c < 8; ++c)
+        box << "v " << (c & 1 ? hi : lo)[0] << ' ' << (c & 2 ? hi : lo)[1] << ' ' << (c & 4 ? hi : lo)[2] << '\n';
+    // The 12 triangles of the box's faces (corner c has bit 0 = x, bit 1 = y, bit 2 = z), outward.
+    const int faces[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                              {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    for (const auto &f : faces)
+        box << "f " << vertices + f[0] + 1 << ' ' << vertices + f[1] + 1 << ' ' << vertices + f[2] + 1 << '\n';
+    test::writeTempFile("sealed_env.obj", env + "\n" + box.str());
+    test::writeTempFile("sealed_robot.obj", fileText(test::sourcePath("problems/window_3d_robot.obj")));
+    std::string cfg = fileText(problem3d());
+    cfg.replace(cfg.find("window_3d_robot.obj"), 19, "sealed_robot.obj");
+    cfg.replace(cfg.find("window_3d_env.obj"), 17, "sealed_env.obj");
+    return test::writeTempFile("sealed.cfg", cfg);
+}
+
+// The numbers after `key` in each line of `text` that contains it.
+std::vector<double> numbersAfter(const std::string &text, const std::string &key)
+{
+    std::vector<double> out;
+    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
+        if (std::isdigit(static_cast<unsigned char>(text[at + key.size()])))
+            out.push_back(std::stod(text.substr(at + key.size())));
+    return out;
+}
+}  // namespace
+
+TEST(Cli, SolveReportsProgressAndLabelsAnApproximatePath)
+{
+    const std::string cfg = sealedWindowProblem();
+    const std::string out = test::writeTempFile("approximate.path", "");
+    std::remove(out.c_str());
+    // stdout and stderr apart: progress goes to stderr, the summary of results to stdout.
+    const std::string err = test::writeTempFile("progress.txt", "");
+    const auto solveTo = [&](const std::string &args) {
+        return test::runShell("{ " + std::string(HYBRIDCD_CLI) + " solve " + cfg + " " + args + " 2>" + err + "; }");
+    };
+    const CliRun r = solveTo("--planner rrt --seed 1 --time 2.5 --out " + out);
+    const std::string progress = fileText(err);
+    EXPECT_EQ(r.status, 2) << r.output << progress;
+
+    // A line a second with the elapsed time, the iterations and the collision checks, then a summary.
+    const std::vector<double> elapsed = numbersAfter(progress, "solve: ");
+    ASSERT_GE(elapsed.size(), 2u) << progress;
+    // Lines are due at whole seconds from the start; a loaded machine may only print them late.
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+        EXPECT_GE(elapsed[i], double(i) + 0.95) << progress;
+        EXPECT_LT(elapsed[i], double(i) + 1.6) << progress;
+    }
+    EXPECT_NE(progress.find(" s of 2.5, "), std::string::npos) << progress;
+    const std::vector<double> checks = numbersAfter(progress, "iterations, ");
+    ASSERT_GE(checks.size(), 3u) << progress;
+    for (std::size_t i = 1; i < checks.size(); ++i)
+        EXPECT_GE(checks[i], checks[i - 1]) << progress;
+    EXPECT_GT(checks.front(), 0.0) << progress;
+    EXPECT_NE(progress.find("solve: approximate solution only after 2."), std::string::npos) << progress;
+    // The summary's count is the one the run reports on stdout.
+    const std::vector<double> reported = numbersAfter(r.output, "collision checks: ");
+    ASSERT_EQ(reported.size(), 1u) << r.output;
+    EXPECT_EQ(checks.back(), reported.front()) << progress << r.output;
+
+    // The approximate path is written, labelled, and free; it starts at the start and stops short.
+    EXPECT_NE(r.output.find("solved: no, approximate path only"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("APPROXIMATE path written to: " + out), std::string::npos) << r.output;
+    EXPECT_NE(progress.find("warning: no exact solution in 2.5 s; " + out + " holds an APPROXIMATE path"),
+              std::string::npos)
+        << progress;
+    const auto poses = readPoses(out, false);
+    ASSERT_GE(poses.size(), 2u);
+    const LoadedProblem problem = loadProblem(cfg);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const PoseRecord &p : poses)
+        EXPECT_FALSE(reference->collides(transformOfRow(p.values.data(), false)));
+    EXPECT_NEAR(poses.front().values[0], problem.config.start.x, 1e-9);
+    EXPECT_LT(poses.back().values[0], 0.0) << "the goal's room is sealed";
+
+    // --quiet: no progress at all; a terminal gets one bar redrawn in place.
+    const CliRun quiet = solveTo("--planner rrt --seed 1 --time 1.2 --quiet --out " + out);
+    EXPECT_EQ(quiet.status, 2) << quiet.output;
+    EXPECT_EQ(fileText(err).find("solve: "), std::string::npos) << fileText(err);
+    const test::ShellResult bar = test::runShell("script -qec '" + std::string(HYBRIDCD_CLI) + " solve " + cfg +
+                                                 " --planner rrt --seed 1 --time 1.2 --out " + out + "' /dev/null");
+    EXPECT_EQ(bar.status, 2) << bar.output;
+    EXPECT_NE(bar.output.find("\r\033[K[#"), std::string::npos) << bar.output;
+    EXPECT_NE(bar.output.find("/1.2 s, "), std::string::npos) << bar.output;
+    EXPECT_NE(bar.output.find("\r\033[Ksolve: approximate solution only after 1."), std::string::npos) << bar.output;
 }
 
 TEST(Cli, ClearanceAndCheckMotion)
