@@ -29,8 +29,7 @@ void RetractionStateSampler::sampleUniform(ompl::base::State *state)
     }
 }
 
-void RetractionStateSampler::sampleUniformNear(ompl::base::State *state, const ompl::base::State *near,
-                                               double distance)
+void RetractionStateSampler::sampleUniformNear(ompl::base::State *state, const ompl::base::State *near, double distance)
 {
     uniform_->sampleUniformNear(state, near, distance);
 }
