@@ -90,7 +90,8 @@ int runRender(const CommandLine &cl, const CheckerCatalogue &checkers)
     const long long width = cl.positiveInteger("width", 800), height = cl.positiveInteger("height", 600);
     for (const auto &[name, value] : {std::pair<const char *, long long>{"width", width}, {"height", height}})
         if (value < 16 || value > 8192)
-            throw UsageError(std::string("option --") + name + " needs 16 to 8192 pixels, got " + std::to_string(value));
+            throw UsageError(std::string("option --") + name + " needs 16 to 8192 pixels, got " +
+                             std::to_string(value));
     const long long samples = cl.has("samples") ? cl.integer("samples", 6) : 6;
     if (samples < 0 || samples > 1000)
         throw UsageError("option --samples needs a count from 0 to 1000, got '" + cl.text("samples", "") + "'");

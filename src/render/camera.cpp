@@ -22,7 +22,8 @@ View viewByName(const std::string &name)
 }
 
 Camera::Camera(View view, const std::vector<Vec3> &points, int width, int height, double marginPixels)
-    : width_(width), height_(height)
+    : width_(width),
+      height_(height)
 {
     Vec3 upHint = Vec3::UnitZ();
     switch (view)
@@ -64,7 +65,8 @@ Camera::Camera(View view, const std::vector<Vec3> &points, int width, int height
     }
     centerX_ = 0.5 * (lo[0] + hi[0]);
     centerY_ = 0.5 * (lo[1] + hi[1]);
-    const double usableX = std::max(1.0, width - 2.0 * marginPixels), usableY = std::max(1.0, height - 2.0 * marginPixels);
+    const double usableX = std::max(1.0, width - 2.0 * marginPixels),
+                 usableY = std::max(1.0, height - 2.0 * marginPixels);
     const double spanX = std::max(hi[0] - lo[0], 1e-12), spanY = std::max(hi[1] - lo[1], 1e-12);
     scale_ = std::min(usableX / spanX, usableY / spanY);
 }

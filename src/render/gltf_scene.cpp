@@ -19,8 +19,8 @@ namespace
 // Appends `count` elements of `type` (VEC3, SCALAR...) to the model's one buffer, 4-byte aligned,
 // and returns the accessor's index.
 template <class T>
-int addAccessor(tinygltf::Model &model, const std::vector<T> &values, int componentType, int type,
-                std::size_t count, int target, std::vector<double> min = {}, std::vector<double> max = {})
+int addAccessor(tinygltf::Model &model, const std::vector<T> &values, int componentType, int type, std::size_t count,
+                int target, std::vector<double> min = {}, std::vector<double> max = {})
 {
     std::vector<unsigned char> &data = model.buffers[0].data;
     data.resize((data.size() + 3) / 4 * 4, 0);
@@ -92,9 +92,8 @@ std::vector<double> quaternionOf(const RigidTransform &pose, const std::vector<d
     Eigen::Quaterniond q(pose.rotation);
     q.normalize();
     std::vector<double> xyzw = {q.x(), q.y(), q.z(), q.w()};
-    if (previous && xyzw[0] * (*previous)[0] + xyzw[1] * (*previous)[1] + xyzw[2] * (*previous)[2] +
-                            xyzw[3] * (*previous)[3] <
-                        0.0)
+    if (previous &&
+        xyzw[0] * (*previous)[0] + xyzw[1] * (*previous)[1] + xyzw[2] * (*previous)[2] + xyzw[3] * (*previous)[3] < 0.0)
         for (double &c : xyzw)
             c = -c;
     return xyzw;
@@ -150,8 +149,8 @@ std::string glbBytes(const GltfRequest &request)
         {
             if (i > 0)
             {
-                const double share = total > 0.0 && std::isfinite(total) ? (along[i] - along[i - 1]) / total
-                                                                          : 1.0 / double(n - 1);
+                const double share =
+                    total > 0.0 && std::isfinite(total) ? (along[i] - along[i - 1]) / total : 1.0 / double(n - 1);
                 t += std::max(floor, duration * share);
             }
             times[i] = float(t);

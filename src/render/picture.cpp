@@ -20,11 +20,11 @@ void addCorners(std::vector<Vec3> &points, const BoundingBox &box, const RigidTr
     if (box.empty())
         return;
     for (int i = 0; i < 8; ++i)
-        points.push_back(placement.apply(
-            Vec3(i & 1 ? box.max.x() : box.min.x(), i & 2 ? box.max.y() : box.min.y(), i & 4 ? box.max.z() : box.min.z())));
+        points.push_back(placement.apply(Vec3(i & 1 ? box.max.x() : box.min.x(), i & 2 ? box.max.y() : box.min.y(),
+                                              i & 4 ? box.max.z() : box.min.z())));
 }
 
-Camera fittedCamera(const PictureRequest &request, int scale)
+std::vector<Vec3> scenePoints(const PictureRequest &request)
 {
     std::vector<Vec3> points;
     if (request.environment)
@@ -35,14 +35,21 @@ Camera fittedCamera(const PictureRequest &request, int scale)
     if (request.volumes)
         points.insert(points.end(), request.volumes->vertices.begin(), request.volumes->vertices.end());
     points.insert(points.end(), request.pathLine.begin(), request.pathLine.end());
+    return points;
+}
+
+Camera fittedCamera(const PictureRequest &request, int scale)
+{
+    const std::vector<Vec3> points = scenePoints(request);
     const double margin = kMarginFraction * std::min(request.width, request.height);
     return Camera(request.view, points, request.width * scale, request.height * scale, margin * scale);
 }
 
 // Blends `layer` over (colour, depth): `opacity` where the layer is nearer, `hiddenOpacity` where
-// it is behind; an opaque layer in front also takes over the depth, so it hides what follows.
-void composite(const RasterLayer &layer, std::vector<Rgb> &colour, std::vector<float> &depth, double opacity,
-               double hiddenOpacity)
+// it is behind (by more than `depthSlack`); an opaque layer in front also takes over the depth, so
+// it hides what follows.
+void composite(const RasterLayer &layer, std::vector<Rgb> &colour, std::vector<double> &depth, double opacity,
+               double hiddenOpacity, double depthSlack = 0.0)
 {
     const PixelRect r = layer.touched();
     for (int y = r.y0; y < r.y1; ++y)
@@ -51,7 +58,7 @@ void composite(const RasterLayer &layer, std::vector<Rgb> &colour, std::vector<f
             if (!layer.covered(x, y))
                 continue;
             const std::size_t i = std::size_t(y) * std::size_t(layer.width()) + std::size_t(x);
-            const bool front = layer.depth(x, y) < depth[i];
+            const bool front = layer.depth(x, y) < depth[i] + depthSlack;
             const double a = front ? opacity : hiddenOpacity;
             const Rgb &c = layer.colour(x, y);
             colour[i] = {colour[i].r + a * (c.r - colour[i].r), colour[i].g + a * (c.g - colour[i].g),
@@ -78,12 +85,19 @@ Image renderPicture(const PictureRequest &request)
     const int w = request.width * s, h = request.height * s;
     const Camera camera = fittedCamera(request, s);
     const Palette &palette = request.palette;
+    // Volumes touch the robot's faces and a path may run along a floor: within this slack (a
+    // hundred-thousandth of the scene's size, metres) they count as in front, not hidden.
+    BoundingBox sceneBox;
+    for (const Vec3 &p : scenePoints(request))
+        if (p.allFinite())
+            sceneBox.extend(p);
+    const double slack = sceneBox.empty() ? 0.0 : 1e-5 * (sceneBox.max - sceneBox.min).norm();
 
     RasterLayer layer(w, h);
     if (request.environment)
         layer.drawMesh(camera, *request.environment, RigidTransform::identity(), palette.environment);
     std::vector<Rgb> colour(std::size_t(w) * std::size_t(h), palette.background);
-    std::vector<float> depth(colour.size(), std::numeric_limits<float>::infinity());
+    std::vector<double> depth(colour.size(), std::numeric_limits<double>::infinity());
     {
         const PixelRect r = layer.touched();
         for (int y = r.y0; y < r.y1; ++y)
@@ -104,16 +118,16 @@ Image renderPicture(const PictureRequest &request)
     if (request.pathLine.size() >= 2)
     {
         layer.clear();
-        const double thickness = std::max(1.5, 0.0035 * std::min(w, h));
+        const double thickness = std::max(2.5, 0.004 * std::min(w, h));
         for (std::size_t i = 0; i + 1 < request.pathLine.size(); ++i)
             layer.drawSegment(camera, request.pathLine[i], request.pathLine[i + 1], thickness, palette.pathLine);
-        composite(layer, colour, depth, 1.0, kLineHiddenOpacity);
+        composite(layer, colour, depth, 1.0, kLineHiddenOpacity, slack);
     }
     if (request.volumes && !request.volumes->empty())
     {
         layer.clear();
         layer.drawMesh(camera, *request.volumes, RigidTransform::identity(), palette.volumes);
-        composite(layer, colour, depth, kVolumeOpacity, kVolumeHiddenOpacity);
+        composite(layer, colour, depth, kVolumeOpacity, kVolumeHiddenOpacity, slack);
     }
 
     Image image(request.width, request.height);
@@ -159,8 +173,7 @@ std::vector<RigidTransform> samplePath(const std::vector<RigidTransform> &path, 
             break;
         }
         const double target = along.back() * double(k) / double(count - 1);
-        const std::size_t i =
-            std::size_t(std::upper_bound(along.begin(), along.end(), target) - along.begin()) - 1;
+        const std::size_t i = std::size_t(std::upper_bound(along.begin(), along.end(), target) - along.begin()) - 1;
         const std::size_t j = std::min(i + 1, path.size() - 1);
         const double span = along[j] - along[i];
         const double t = span > 0.0 ? (target - along[i]) / span : 0.0;

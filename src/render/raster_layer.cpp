@@ -8,7 +8,7 @@ namespace hcd::render
 {
 namespace
 {
-constexpr float kEmpty = std::numeric_limits<float>::infinity();
+constexpr double kEmpty = std::numeric_limits<double>::infinity();
 
 // Twice the signed area of (a, b, p) in pixel coordinates.
 double edge(const Vec3 &a, const Vec3 &b, double px, double py)
@@ -35,7 +35,9 @@ double flatShade(const Camera &camera, const Vec3 &normal)
 }
 
 RasterLayer::RasterLayer(int width, int height)
-    : width_(width), height_(height), depth_(std::size_t(width) * std::size_t(height), kEmpty),
+    : width_(width),
+      height_(height),
+      depth_(std::size_t(width) * std::size_t(height), kEmpty),
       colour_(std::size_t(width) * std::size_t(height))
 {
 }
@@ -105,8 +107,8 @@ void RasterLayer::drawMesh(const Camera &camera, const TriangleMesh &mesh, const
                     inside = inside && (w[k] > 0.0 || (w[k] == 0.0 && tl[k]));
                 if (!inside)
                     continue;
-                const float z = float(w[0] * a.z() + w[1] * b.z() + w[2] * c.z());
-                float &stored = depth_[index(x, y)];
+                const double z = w[0] * a.z() + w[1] * b.z() + w[2] * c.z();
+                double &stored = depth_[index(x, y)];
                 if (z < stored)
                 {
                     stored = z;
@@ -120,8 +122,7 @@ void RasterLayer::drawMesh(const Camera &camera, const TriangleMesh &mesh, const
     }
 }
 
-void RasterLayer::drawSegment(const Camera &camera, const Vec3 &a, const Vec3 &b, double thickness,
-                              const Rgb &colour)
+void RasterLayer::drawSegment(const Camera &camera, const Vec3 &a, const Vec3 &b, double thickness, const Rgb &colour)
 {
     const Vec3 p = camera.project(a), q = camera.project(b);
     if (!p.allFinite() || !q.allFinite())
@@ -141,8 +142,8 @@ void RasterLayer::drawSegment(const Camera &camera, const Vec3 &a, const Vec3 &b
             const double ex = px - s * dx, ey = py - s * dy;
             if (ex * ex + ey * ey > radius * radius)
                 continue;
-            const float z = float(p.z() + s * (q.z() - p.z()));
-            float &stored = depth_[index(x, y)];
+            const double z = p.z() + s * (q.z() - p.z());
+            double &stored = depth_[index(x, y)];
             if (z < stored)
             {
                 stored = z;

@@ -33,14 +33,15 @@ public:
     /// Draws `mesh` placed by `worldFromMesh`, each triangle in `colour` times the flat shading of
     /// its normal under a light fixed to the camera (two-sided: meshes need not be oriented).
     /// A pixel is covered when its centre lies inside the projected triangle (top-left rule).
-    void drawMesh(const Camera &camera, const TriangleMesh &mesh, const RigidTransform &worldFromMesh, const Rgb &colour);
+    void drawMesh(const Camera &camera, const TriangleMesh &mesh, const RigidTransform &worldFromMesh,
+                  const Rgb &colour);
 
     /// Draws a segment of `thickness` pixels between two world points, in front of everything on
     /// this layer's depth scale that lies behind it (depth is interpolated along the segment).
     void drawSegment(const Camera &camera, const Vec3 &a, const Vec3 &b, double thickness, const Rgb &colour);
 
-    bool covered(int x, int y) const { return depth_[index(x, y)] < std::numeric_limits<float>::infinity(); }
-    float depth(int x, int y) const { return depth_[index(x, y)]; }
+    bool covered(int x, int y) const { return depth_[index(x, y)] < std::numeric_limits<double>::infinity(); }
+    double depth(int x, int y) const { return depth_[index(x, y)]; }
     const Rgb &colour(int x, int y) const { return colour_[index(x, y)]; }
     const PixelRect &touched() const { return touched_; }
 
@@ -49,7 +50,7 @@ private:
     void touch(int x0, int y0, int x1, int y1);
 
     int width_, height_;
-    std::vector<float> depth_;
+    std::vector<double> depth_;
     std::vector<Rgb> colour_;
     PixelRect touched_;
 };
