@@ -92,8 +92,8 @@ TEST(RenderCli, PictureShowsFloorRobotsAndPathWhereTheyProject)
     const FloorProblem problem;
     const std::string out = test::writeTempFile("render.png", "");
     std::filesystem::remove(out);
-    const CliRun r = run("render " + problem.cfg + " --path " + problem.path +
-                         " --samples 0 --width 400 --height 240 --out " + out);
+    const CliRun r =
+        run("render " + problem.cfg + " --path " + problem.path + " --samples 0 --width 400 --height 240 --out " + out);
     ASSERT_EQ(r.status, 0) << r.output;
     const Decoded image = decodePng(out);
     ASSERT_EQ(image.width, 400);
@@ -129,14 +129,15 @@ TEST(RenderCli, LevelVolumesSitAroundTheRobotAtItsPose)
     ASSERT_EQ(run("render " + problem.cfg + " --width 400 --height 240 --out " + plain).status, 0);
     for (const std::string where : {"start", "goal", "1"})
     {
-        const CliRun r = run("render " + problem.cfg + " --path " + problem.path + " --samples 0 --checker obb --level 0 " +
-                             "--volumes-at " + where + " --width 400 --height 240 --out " + boxed);
+        const CliRun r =
+            run("render " + problem.cfg + " --path " + problem.path + " --samples 0 --checker obb --level 0 " +
+                "--volumes-at " + where + " --width 400 --height 240 --out " + boxed);
         ASSERT_EQ(r.status, 0) << r.output;
         const Decoded before = decodePng(plain), after = decodePng(boxed);
         // The root box of the robot is the robot's own box: amber blends over the robot there.
-        const std::pair<double, double> at = where == "start" ? std::pair{4.0, 3.0}
-                                             : where == "goal"  ? std::pair{16.0, 7.0}
-                                                                : std::pair{10.0, 3.0};
+        const std::pair<double, double> at = where == "start"  ? std::pair{4.0, 3.0}
+                                             : where == "goal" ? std::pair{16.0, 7.0}
+                                                               : std::pair{10.0, 3.0};
         const auto [x, y] = pixelOf(at.first, at.second);
         const unsigned char *p = after.at(x, y);
         const unsigned char *q = before.at(x, y);
