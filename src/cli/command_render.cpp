@@ -12,8 +12,11 @@
 #include "hybridcd/render/gltf_scene.h"
 #include "hybridcd/render/picture.h"
 
+#include <cmath>
 #include <iostream>
+#include <limits>
 #include <optional>
+#include <sstream>
 
 namespace hcd::cli
 {
@@ -126,7 +129,19 @@ int runRender(const CommandLine &cl, const CheckerCatalogue &checkers)
     {
         const std::string file = cl.text("path", "");
         for (const PoseRecord &r : readPoses(file, cfg.planar))
+        {
+            // glTF stores single-precision floats: a coordinate beyond them would become infinite.
+            if (!gltf.empty())
+                for (std::size_t k = 0; k < (cfg.planar ? 2 : 3); ++k)
+                    if (std::abs(r.values[k]) > double(std::numeric_limits<float>::max()))
+                    {
+                        std::ostringstream message;
+                        message << "the coordinate " << r.values[k]
+                                << " is beyond the single precision of glTF (--gltf)";
+                        throw InputError(file, r.line, message.str());
+                    }
             path.push_back(transformOfRow(r.values.data(), cfg.planar));
+        }
         if (path.empty())
             throw InputError(file, 0, "the path has no poses");
     }

@@ -16,6 +16,11 @@ double edge(const Vec3 &a, const Vec3 &b, double px, double py)
     return (b.x() - a.x()) * (py - a.y()) - (b.y() - a.y()) * (px - a.x());
 }
 
+// floor(v) and ceil(v) as pixel indices, clamped to [-1, limit + 1] first so that no far-away or
+// huge coordinate overflows the conversion to int.
+int floorIndex(double v, int limit) { return int(std::floor(std::clamp(v, -1.0, double(limit) + 1.0))); }
+int ceilIndex(double v, int limit) { return int(std::ceil(std::clamp(v, -1.0, double(limit) + 1.0))); }
+
 // Top-left fill rule, so that pixels on an edge shared by two triangles are drawn once.
 bool isTopLeft(const Vec3 &a, const Vec3 &b, bool counterClockwise)
 {
@@ -84,10 +89,10 @@ void RasterLayer::drawMesh(const Camera &camera, const TriangleMesh &mesh, const
         const Rgb shaded{colour.r * shade, colour.g * shade, colour.b * shade};
 
         // Pixels whose centres (x + 0.5, y + 0.5) may lie inside.
-        const int x0 = std::max(0, int(std::floor(std::min({a.x(), b.x(), c.x()}) - 0.5)));
-        const int x1 = std::min(width_, int(std::ceil(std::max({a.x(), b.x(), c.x()}) - 0.5)) + 1);
-        const int y0 = std::max(0, int(std::floor(std::min({a.y(), b.y(), c.y()}) - 0.5)));
-        const int y1 = std::min(height_, int(std::ceil(std::max({a.y(), b.y(), c.y()}) - 0.5)) + 1);
+        const int x0 = std::max(0, floorIndex(std::min({a.x(), b.x(), c.x()}) - 0.5, width_));
+        const int x1 = std::min(width_, ceilIndex(std::max({a.x(), b.x(), c.x()}) - 0.5, width_) + 1);
+        const int y0 = std::max(0, floorIndex(std::min({a.y(), b.y(), c.y()}) - 0.5, height_));
+        const int y1 = std::min(height_, ceilIndex(std::max({a.y(), b.y(), c.y()}) - 0.5, height_) + 1);
         if (x0 >= x1 || y0 >= y1)
             continue;
         const bool ccw = area > 0.0;
@@ -128,10 +133,10 @@ void RasterLayer::drawSegment(const Camera &camera, const Vec3 &a, const Vec3 &b
     if (!p.allFinite() || !q.allFinite())
         return;
     const double radius = 0.5 * thickness;
-    const int x0 = std::max(0, int(std::floor(std::min(p.x(), q.x()) - radius)));
-    const int x1 = std::min(width_, int(std::ceil(std::max(p.x(), q.x()) + radius)) + 1);
-    const int y0 = std::max(0, int(std::floor(std::min(p.y(), q.y()) - radius)));
-    const int y1 = std::min(height_, int(std::ceil(std::max(p.y(), q.y()) + radius)) + 1);
+    const int x0 = std::max(0, floorIndex(std::min(p.x(), q.x()) - radius, width_));
+    const int x1 = std::min(width_, ceilIndex(std::max(p.x(), q.x()) + radius, width_) + 1);
+    const int y0 = std::max(0, floorIndex(std::min(p.y(), q.y()) - radius, height_));
+    const int y1 = std::min(height_, ceilIndex(std::max(p.y(), q.y()) + radius, height_) + 1);
     const double dx = q.x() - p.x(), dy = q.y() - p.y(), length2 = dx * dx + dy * dy;
     bool drew = false;
     for (int y = y0; y < y1; ++y)
