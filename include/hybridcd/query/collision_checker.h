@@ -2,7 +2,7 @@
 // The common interface of every collision checker (brute force, OBB tree, ...).
 #pragma once
 
-#include "hybridcd/bvh/volume_traits.h"
+#include "hybridcd/bvh/export_mesh.h"
 #include "hybridcd/geometry/collision_scene.h"
 #include "hybridcd/geometry/rigid_transform.h"
 #include "hybridcd/query/query_context.h"
@@ -45,7 +45,7 @@ struct HierarchyReport
     std::size_t ratioNodes = 0;  ///< nodes the mean was taken over
 };
 
-/// The volumes of one level of a checker's two hierarchies, as meshes.
+/// The volumes of one level of a checker's two hierarchies, as meshes (bvh/export_mesh.h).
 struct LevelVolumes
 {
     std::string kind;            ///< the volume type, e.g. "OBB"
