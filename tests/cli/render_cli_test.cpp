@@ -270,3 +270,41 @@ TEST(RenderCli, InspectExportPlacesTheRobotsVolumesAtTheStart)
     EXPECT_NEAR(mean.x(), 4.0, 1e-4);
     EXPECT_NEAR(mean.y(), 3.0, 1e-4);
 }
+
+TEST(RenderCli, ScriptDrawsEveryProblemWithASolvedPath)
+{
+    // scripts/render_problems.sh on the project's problems: no .path beside them, so each is solved.
+    const std::string folder =
+        (std::filesystem::path(test::writeTempFile("pictures.keep", "")).parent_path() / "pictures").string();
+    std::filesystem::remove_all(folder);
+    const CliRun r = test::runShell(
+        "HYBRIDCD_CLI=" + std::string(HYBRIDCD_CLI) + " bash " + test::sourcePath("scripts/render_problems.sh") + " " +
+        folder + " " + test::sourcePath("problems/corridor_2d.cfg") + " " + test::sourcePath("problems/window_3d.cfg"));
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char *name : {"corridor_2d", "window_3d"})
+    {
+        EXPECT_NE(r.output.find(std::string(name) + ": " + folder + "/" + name + ".png, path solved into"),
+                  std::string::npos)
+            << r.output;
+        const std::string cfg = test::sourcePath(std::string("problems/") + name + ".cfg");
+        const bool planar = std::string(name) == "corridor_2d";
+        EXPECT_GE(readPoses(folder + "/" + name + ".path", planar).size(), 2u) << name;
+        // The path shows: the picture differs from the problem's picture without it.
+        const std::string bare = folder + "/" + name + ".bare.png";
+        ASSERT_EQ(run("render " + cfg + " --out " + bare).status, 0);
+        const Decoded with = decodePng(folder + "/" + name + ".png"), without = decodePng(bare);
+        ASSERT_EQ(with.width, 800);
+        ASSERT_EQ(with.height, 600);
+        ASSERT_EQ(with.rgb.size(), without.rgb.size());
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < with.rgb.size(); i += 3)
+            differing += std::memcmp(&with.rgb[i], &without.rgb[i], 3) != 0;
+        EXPECT_GT(differing, 500u) << name;
+    }
+    // A problem that cannot be loaded is reported, and the script fails.
+    const CliRun bad =
+        test::runShell("HYBRIDCD_CLI=" + std::string(HYBRIDCD_CLI) + " bash " +
+                       test::sourcePath("scripts/render_problems.sh") + " " + folder + " /no/such/problem.cfg");
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_NE(bad.output.find("problem: not drawn:"), std::string::npos) << bad.output;
+}
