@@ -33,7 +33,7 @@ for cfg in "${problems[@]}"; do
     if "$cli" solve "$cfg" --seed 1 --time "${SOLVE_TIME:-30}" --out "$path" >"$out/$name.solve.txt" 2>&1; then
       note="path solved into $path"
     else
-      note="no path (solve: $(tail -n 1 "$out/$name.solve.txt"))"
+      note="no path ($(grep -m 1 -E '^solved:|error:' "$out/$name.solve.txt" || tail -n 1 "$out/$name.solve.txt"))"
       path=
     fi
   fi
