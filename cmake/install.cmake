@@ -35,7 +35,8 @@ if(TARGET hybridcd)
 endif()
 
 # Public headers: all of include/hybridcd, less the layers that were not built.
-set(_hybridcd_header_excludes)
+# render/ belongs to the tool (its library is not installed).
+set(_hybridcd_header_excludes PATTERN render EXCLUDE)
 if(NOT TARGET hybridcd_ompl)
   list(APPEND _hybridcd_header_excludes PATTERN ompl EXCLUDE PATTERN planners EXCLUDE)
 endif()

@@ -17,7 +17,7 @@ LEVELS = [
     ["bv", "narrowphase"],    # bounding volumes; convex pieces and linear programs
     ["bvh"],                  # volume trees over any bounding volume
     ["query", "io"],          # collision checkers; problem files and meshes
-    ["ompl", "fcl"],          # OMPL adapters; FCL as a checker
+    ["ompl", "fcl", "render"],  # OMPL adapters; FCL as a checker; pictures and glTF scenes
     ["planners"],             # OMPL's geometric planners by OMPL.app's names
     ["cli"],                  # the hybridcd tool (src/ only)
 ]

@@ -16,6 +16,8 @@ packages=(
   ompl-demos python3
   # scripts/check_format.sh
   clang-format
+  # `hybridcd render`: PNG pictures and glTF scenes.
+  libstb-dev libtinygltf-dev
   # The Python module and its test.
   pybind11-dev python3-dev python3-numpy
   # Benchmark shards run side by side or over ssh (bench/README.md), and their plots.

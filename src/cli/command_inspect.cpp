@@ -7,6 +7,7 @@
 #include "hybridcd/geometry/solid_components.h"
 #include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
+#include "hybridcd/io/pose_codec.h"
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/query/checker_catalogue.h"
 
@@ -71,7 +72,7 @@ void declareInspect(CommandLine &cl)
 {
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
         .option("level", "K", "the tree level --export writes (default 0, the root)")
-        .option("export", "FILE.obj", "write the volumes of tree level K as a mesh");
+        .option("export", "FILE.obj", "write the volumes of tree level K as a mesh (the robot's at its start pose)");
     addCheckerOptions(cl, true);
     cl.footer(R"(
 Examples:
@@ -117,7 +118,7 @@ int runInspect(const CommandLine &cl, const CheckerCatalogue &checkers)
         {
             const std::string path = cl.text("export", "");
             AtomicFile obj(path);
-            if (!checker->exportLevel(int(level), obj.stream()))
+            if (!checker->exportLevel(int(level), obj.stream(), transformOfConfigPose(cfg.start, cfg.planar)))
                 throw UsageError("checker '" + name + "' has no hierarchy to export");
             obj.commit();
             std::cout << "  level " << level << " volumes written to " << path << '\n';

@@ -16,6 +16,7 @@ void declareBench(CommandLine &cl);
 void declareCheckMotion(CommandLine &cl);
 void declareClearance(CommandLine &cl);
 void declareContacts(CommandLine &cl);
+void declareRender(CommandLine &cl);
 
 int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers);
 int runCheck(const CommandLine &cl, const CheckerCatalogue &checkers);
@@ -24,6 +25,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers);
 int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers);
 int runClearance(const CommandLine &cl, const CheckerCatalogue &checkers);
 int runContacts(const CommandLine &cl, const CheckerCatalogue &checkers);
+int runRender(const CommandLine &cl, const CheckerCatalogue &checkers);
 
 /// Exit statuses shared by all commands.
 enum ExitStatus

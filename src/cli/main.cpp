@@ -34,6 +34,7 @@ const Command kCommands[] = {
     {"clearance", "distance to the environment per pose (negative: penetration)", declareClearance, runClearance},
     {"contacts", "intersecting triangles or pieces per pose, with a witness point", declareContacts, runContacts},
     {"inspect", "describe the meshes and the hierarchies each checker builds", declareInspect, runInspect},
+    {"render", "draw the problem and a path: PNG picture, glTF scene with the path animated", declareRender, runRender},
     {"bench", "OMPL benchmark log of planners and checkers (optionally one shard)", declareBench, runBench},
 };
 

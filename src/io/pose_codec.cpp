@@ -40,6 +40,14 @@ double wrapYaw(double yaw)
     return wrapped;
 }
 
+RigidTransform transformOfConfigPose(const ConfigPose &pose, bool planar)
+{
+    if (planar)
+        return RigidTransform::fromPlanarPose(pose.x, pose.y, pose.theta);
+    return RigidTransform::fromAxisAngle(Vec3(pose.x, pose.y, pose.z), Vec3(pose.axisX, pose.axisY, pose.axisZ),
+                                         pose.theta);
+}
+
 RigidTransform transformOfRow(const double *row, bool planar)
 {
     if (planar)

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/query/collision_checker.h"
 
+#include <ostream>
+
 namespace hcd
 {
 namespace
@@ -18,7 +20,34 @@ auto withOneOffContext(QueryStats *stats, Query &&query)
     }
     return result;
 }
+
+void writeGroup(std::ostream &obj, const char *group, const ExportMesh &mesh, const RigidTransform &placement,
+                std::size_t &vertexBase)
+{
+    obj << "g " << group << '\n';
+    for (const Vec3 &local : mesh.vertices)
+    {
+        const Vec3 v = placement.apply(local);
+        obj << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+    }
+    for (const auto &t : mesh.triangles)
+        obj << "f " << vertexBase + t[0] + 1 << ' ' << vertexBase + t[1] + 1 << ' ' << vertexBase + t[2] + 1 << '\n';
+    vertexBase += mesh.vertices.size();
+}
 }  // namespace
+
+bool CollisionChecker::exportLevel(int level, std::ostream &obj, const RigidTransform &worldFromRobot) const
+{
+    const std::optional<LevelVolumes> volumes = levelVolumes(level);
+    if (!volumes)
+        return false;
+    obj << "# " << volumes->kind << " volumes of tree level " << level
+        << " (leaves above that level included), the robot's placed at its pose\n";
+    std::size_t base = 0;
+    writeGroup(obj, "robot", volumes->robot, worldFromRobot, base);
+    writeGroup(obj, "environment", volumes->environment, RigidTransform::identity(), base);
+    return true;
+}
 
 bool CollisionChecker::collides(const RigidTransform &worldFromRobot, QueryStats *stats) const
 {

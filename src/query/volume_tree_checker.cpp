@@ -411,8 +411,7 @@ std::pair<double, std::size_t> meanVolumeRatio(const VolumeTree<Volume> &tree)
 }
 
 template <class Volume>
-void writeLevel(const VolumeTree<Volume> &tree, int level, const char *group, std::ostream &obj,
-                std::size_t &vertexBase)
+ExportMesh levelMesh(const VolumeTree<Volume> &tree, int level)
 {
     ExportMesh mesh;
     std::vector<std::pair<std::uint32_t, int>> stack{{0, 0}};
@@ -432,24 +431,20 @@ void writeLevel(const VolumeTree<Volume> &tree, int level, const char *group, st
             stack.push_back({std::uint32_t(n.firstChild), depth + 1});
         }
     }
-    obj << "g " << group << '\n';
-    for (const Vec3 &v : mesh.vertices)
-        obj << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-    for (const auto &t : mesh.triangles)
-        obj << "f " << vertexBase + t[0] + 1 << ' ' << vertexBase + t[1] + 1 << ' ' << vertexBase + t[2] + 1 << '\n';
-    vertexBase += mesh.vertices.size();
+    return mesh;
 }
 }  // namespace
 
 template <class Volume>
-bool VolumeTreeChecker<Volume>::exportLevel(int level, std::ostream &obj) const
+std::optional<LevelVolumes> VolumeTreeChecker<Volume>::levelVolumes(int level) const
 {
-    std::size_t base = 0;
-    obj << "# " << VolumeTraits<Volume>::kName << " volumes of tree level " << level
-        << " (leaves above that level included)\n";
-    writeLevel(robotTree_, level, "robot", obj, base);
-    writeLevel(environmentTree_, level, "environment", obj, base);
-    return true;
+    LevelVolumes v;
+    v.kind = VolumeTraits<Volume>::kName;
+    v.robot = levelMesh(robotTree_, level);
+    v.environment = levelMesh(environmentTree_, level);
+    v.robotDepth = robotTree_.depth();
+    v.environmentDepth = environmentTree_.depth();
+    return v;
 }
 
 template <class Volume>

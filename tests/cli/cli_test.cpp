@@ -294,6 +294,8 @@ TEST(Cli, EveryCommandHasHelpWithItsOptionsAndExamples)
         {"clearance", {"--states"}},
         {"contacts", {"--states", "--limit"}},
         {"inspect", {"--level", "--export"}},
+        {"render",
+         {"--out", "--gltf", "--path", "--samples", "--level", "--volumes-at", "--view", "--width", "--height"}},
         {"bench", {"--planner", "--runs", "--time", "--memory", "--shard", "--out", "--motion", "--seed"}},
     };
     for (const auto &[command, options] : commands)

@@ -10,6 +10,7 @@
 #include "hybridcd/bv/hybrid_volume.h"
 #include "hybridcd/bv/minimum_volume_ellipsoid.h"
 #include "hybridcd/bv/obb.h"
+#include "hybridcd/bvh/export_mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -21,13 +22,6 @@ namespace hcd
 {
 template <class Volume>
 struct VolumeTraits;
-
-/// Vertices and triangles (0-based) to which volumes are appended for export.
-struct ExportMesh
-{
-    std::vector<Vec3> vertices;
-    std::vector<std::array<std::size_t, 3>> triangles;
-};
 
 /// The unit sphere as a UV mesh mapped by x -> center + linear * x (ellipsoids; boxes use the cube).
 void appendMappedSphere(ExportMesh &mesh, const Vec3 &center, const Mat3 &linear);

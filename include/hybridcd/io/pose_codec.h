@@ -6,6 +6,7 @@
 #pragma once
 
 #include "hybridcd/geometry/rigid_transform.h"
+#include "hybridcd/io/problem_config.h"
 
 #include <array>
 #include <cstddef>
@@ -53,6 +54,10 @@ PoseRow stateRowOf(const double *row, bool planar);
 /// to rounding (within 8 ulps, as stateRowOf writes and OMPL's samplers make) is used as it is:
 /// normalising it again could change its bits and so the pose. Others go through rowQuaternion.
 RigidTransform transformOfStateRow(const double *row, bool planar);
+
+/// The world-from-robot transform of a .cfg's start or goal: (x, y, z) and `theta` radians about
+/// the axis in 3D, (x, y) and yaw `theta` in the plane, as OMPL.app builds the state.
+RigidTransform transformOfConfigPose(const ConfigPose &pose, bool planar);
 
 /// What reading a quaternion from outside found (normaliseRowQuaternion).
 struct QuaternionCheck

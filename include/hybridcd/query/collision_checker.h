@@ -2,12 +2,14 @@
 // The common interface of every collision checker (brute force, OBB tree, ...).
 #pragma once
 
+#include "hybridcd/bvh/export_mesh.h"
 #include "hybridcd/geometry/collision_scene.h"
 #include "hybridcd/geometry/rigid_transform.h"
 #include "hybridcd/query/query_context.h"
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -41,6 +43,16 @@ struct HierarchyReport
     /// triangles): how tightly the volumes wrap their content. NaN when not measured.
     double meanVolumeRatio = std::numeric_limits<double>::quiet_NaN();
     std::size_t ratioNodes = 0;  ///< nodes the mean was taken over
+};
+
+/// The volumes of one level of a checker's two hierarchies, as meshes (bvh/export_mesh.h).
+struct LevelVolumes
+{
+    std::string kind;            ///< the volume type, e.g. "OBB"
+    ExportMesh robot;            ///< in the robot's own frame
+    ExportMesh environment;      ///< in the world frame
+    std::size_t robotDepth = 0;  ///< levels of the robot tree: `level` ranges over 0 to robotDepth - 1
+    std::size_t environmentDepth = 0;
 };
 
 /// Answers "does the robot at this pose touch the environment?". Touching counts as collision.
@@ -108,15 +120,18 @@ public:
         return {};
     }
 
-    /// Writes the volumes of tree level `level` (the root is level 0) of the robot and environment
-    /// hierarchies as Wavefront OBJ meshes (two groups, robot in its own frame). Returns false when
-    /// this checker has no such hierarchy.
-    virtual bool exportLevel(int level, std::ostream &obj) const
+    /// The volumes of tree level `level` (the root is level 0; a leaf above that level stands for
+    /// itself) of the robot and environment hierarchies, or nullopt when this checker has none.
+    virtual std::optional<LevelVolumes> levelVolumes(int level) const
     {
         (void)level;
-        (void)obj;
-        return false;
+        return std::nullopt;
     }
+
+    /// Writes levelVolumes(level) as a Wavefront OBJ mesh in world coordinates: group "robot" holds
+    /// the robot's volumes placed by `worldFromRobot`, group "environment" the environment's.
+    /// Returns false (and writes nothing) when this checker has no such hierarchy.
+    bool exportLevel(int level, std::ostream &obj, const RigidTransform &worldFromRobot) const;
 
 private:
     // What each checker implements; the public forms above call these.

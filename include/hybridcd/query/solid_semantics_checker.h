@@ -34,7 +34,7 @@ public:
     {
         return surface_->hierarchies(withVolumeRatios);
     }
-    bool exportLevel(int level, std::ostream &obj) const override { return surface_->exportLevel(level, obj); }
+    std::optional<LevelVolumes> levelVolumes(int level) const override { return surface_->levelVolumes(level); }
 
     /// True when, the surfaces being disjoint, one object lies inside a solid of the other.
     bool contained(const RigidTransform &worldFromRobot) const;

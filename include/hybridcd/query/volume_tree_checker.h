@@ -36,7 +36,7 @@ public:
                       std::optional<PieceStage> pieces = std::nullopt);
     std::string name() const override { return name_; }
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
-    bool exportLevel(int level, std::ostream &obj) const override;
+    std::optional<LevelVolumes> levelVolumes(int level) const override;
 
     const VolumeTree<Volume> &robotTree() const { return robotTree_; }
     const VolumeTree<Volume> &environmentTree() const { return environmentTree_; }
