@@ -64,8 +64,8 @@ const std::vector<Cone> &cones()
                         normal = -normal;
                         offset = -offset;
                     }
-                    if (offset < 1e-9 ||
-                        std::any_of(points.begin(), points.end(), [&](const Vec3 &p) { return normal.dot(p) > offset + 1e-9; }))
+                    if (offset < 1e-9 || std::any_of(points.begin(), points.end(),
+                                                     [&](const Vec3 &p) { return normal.dot(p) > offset + 1e-9; }))
                         continue;
                     Mat3 m;
                     m << points[a], points[b], points[c];
@@ -263,7 +263,8 @@ std::vector<Vec3> KDop<K>::vertices() const
                 bool inside = true;
                 for (int j = 0; j < n && inside; ++j)
                     inside = normals[j].dot(p) <= offsets[j] + 16 * tol;
-                if (inside && std::none_of(out.begin(), out.end(), [&](const Vec3 &q) { return (q - p).norm() <= 16 * tol; }))
+                if (inside &&
+                    std::none_of(out.begin(), out.end(), [&](const Vec3 &q) { return (q - p).norm() <= 16 * tol; }))
                     out.push_back(p);
             }
     return out;
@@ -340,10 +341,10 @@ double kdopDistanceLowerBound(const KDop<K> &a, const KDop<K> &b, double toleran
     return std::max(0.0, gap - tolerance);
 }
 
-#define HCD_KDOP(K)                                                                                                   \
-    template struct KDop<K>;                                                                                          \
-    template const std::array<Vec3, K / 2> &kdopDirections<K>();                                                      \
-    template bool kdopsOverlap<K>(const KDop<K> &, const KDop<K> &, double);                                          \
+#define HCD_KDOP(K)                                                                                                    \
+    template struct KDop<K>;                                                                                           \
+    template const std::array<Vec3, K / 2> &kdopDirections<K>();                                                       \
+    template bool kdopsOverlap<K>(const KDop<K> &, const KDop<K> &, double);                                           \
     template double kdopDistanceLowerBound<K>(const KDop<K> &, const KDop<K> &, double);
 HCD_KDOP(14)
 HCD_KDOP(18)

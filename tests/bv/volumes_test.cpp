@@ -29,13 +29,15 @@ std::vector<Vec3> randomCloud(test::TestRandom &rng, int kind, double scale)
     const Vec3 stretch = kind == 0 ? Vec3(1, 0.7, 0.5) : kind == 1 ? Vec3(1, 0.8, 0) : Vec3(1, 0.02, 0.02);
     std::vector<Vec3> points(3 + std::size_t(rng() % 40));
     for (Vec3 &p : points)
-        p = offset + scale * (r * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).cwiseProduct(stretch));
+        p = offset +
+            scale * (r * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).cwiseProduct(stretch));
     return points;
 }
 
 RigidTransform randomPose(test::TestRandom &rng, double scale)
 {
-    return {test::randomRotation(rng), scale * Vec3(uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5))};
+    return {test::randomRotation(rng),
+            scale * Vec3(uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5))};
 }
 
 double pointSetDistance(const std::vector<Vec3> &a, const std::vector<Vec3> &b)
@@ -57,7 +59,10 @@ bool contains(const KDop<K> &v, const Vec3 &p)
 }
 
 // The axis-aligned box around a volume, for rejection sampling inside it.
-void boundsOf(const Sphere &v, Vec3 &lo, Vec3 &hi) { lo = v.center.array() - v.radius, hi = v.center.array() + v.radius; }
+void boundsOf(const Sphere &v, Vec3 &lo, Vec3 &hi)
+{
+    lo = v.center.array() - v.radius, hi = v.center.array() + v.radius;
+}
 void boundsOf(const Aabb &v, Vec3 &lo, Vec3 &hi) { lo = v.center - v.halfExtents, hi = v.center + v.halfExtents; }
 void boundsOf(const FixedAabb &v, Vec3 &lo, Vec3 &hi)
 {
@@ -164,8 +169,8 @@ TEST(Volumes, KdopPolytopeIsExact)
     EXPECT_NEAR(KDop<14>::fit(cube).volume(), 8.0, 1e-6);
     EXPECT_NEAR(KDop<18>::fit(cube).volume(), 8.0, 1e-6);
     EXPECT_NEAR(KDop<26>::fit(cube).volume(), 8.0, 1e-6);
-    const std::vector<Vec3> octahedron = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
-                                          Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
+    const std::vector<Vec3> octahedron = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                                          Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
     EXPECT_NEAR(KDop<14>::fit(octahedron).volume(), 4.0 / 3.0, 1e-6);
     EXPECT_NEAR(KDop<26>::fit(octahedron).volume(), 4.0 / 3.0, 1e-6);
     EXPECT_NEAR(Aabb::fit(octahedron).volume(), 8.0, 1e-6);

@@ -134,11 +134,11 @@ void checkProblem(const std::string &cfg, std::size_t uniformCount, std::size_t 
 }  // namespace
 
 // 400 uniform poses and 100 near-contact pairs per problem; distance on 10 of each kind.
-#define HCD_AGREEMENT(Name, relative)                                                                                 \
-    TEST(VolumeAgreement, Name)                                                                                       \
-    {                                                                                                                 \
-        HYBRIDCD_REQUIRE_OMPLAPP(cfg, relative);                                                                      \
-        checkProblem(cfg, test::cases(400), 10, test::cases(100));                                                    \
+#define HCD_AGREEMENT(Name, relative)                                                                                  \
+    TEST(VolumeAgreement, Name)                                                                                        \
+    {                                                                                                                  \
+        HYBRIDCD_REQUIRE_OMPLAPP(cfg, relative);                                                                       \
+        checkProblem(cfg, test::cases(400), 10, test::cases(100));                                                     \
     }
 HCD_AGREEMENT(Cubicles, "3D/cubicles.cfg")
 HCD_AGREEMENT(Twistycool, "3D/Twistycool.cfg")

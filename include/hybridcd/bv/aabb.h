@@ -21,10 +21,7 @@ struct Aabb
     static Aabb fit(const std::vector<Vec3> &points);
 
     /// True when `p` lies in the box (inclusive).
-    bool contains(const Vec3 &p) const
-    {
-        return ((p - center).cwiseAbs().array() <= halfExtents.array()).all();
-    }
+    bool contains(const Vec3 &p) const { return ((p - center).cwiseAbs().array() <= halfExtents.array()).all(); }
 
     /// The smallest axis-aligned box around this box mapped by `pose` (the dynamic update: the
     /// rotated box is boxed again, |R| times the extents), grown by a relative 1e-12 for rounding.
