@@ -46,7 +46,8 @@ std::pair<double, double> overlapTimes(const Vec3 &lo, const Vec3 &hi, const Vec
 }  // namespace
 
 TranslationContactFinder::TranslationContactFinder(CollisionScene scene)
-    : robotFaces_(withoutRepeatedFaces(scene.robot)), environmentFaces_(withoutRepeatedFaces(scene.environment))
+    : robotFaces_(withoutRepeatedFaces(scene.robot)),
+      environmentFaces_(withoutRepeatedFaces(scene.environment))
 {
     const TriangleMesh &env = *environmentFaces_.mesh;
     padding_ = kPadding * magnitude(env.bounds());
@@ -63,11 +64,11 @@ TranslationContact TranslationContactFinder::solvePair(const RigidTransform &wor
                                                        std::uint32_t robot, std::uint32_t environment) const
 {
     const TriangleMesh &r = *robotFaces_.mesh, &e = *environmentFaces_.mesh;
-    const ConvexPiece moving = ConvexPiece::hullOf(
-        {worldFromRobot.apply(r.corner(robot, 0)), worldFromRobot.apply(r.corner(robot, 1)),
-         worldFromRobot.apply(r.corner(robot, 2))});
-    const ConvexPiece fixed = ConvexPiece::hullOf({e.corner(environment, 0), e.corner(environment, 1),
-                                                   e.corner(environment, 2)});
+    const ConvexPiece moving =
+        ConvexPiece::hullOf({worldFromRobot.apply(r.corner(robot, 0)), worldFromRobot.apply(r.corner(robot, 1)),
+                             worldFromRobot.apply(r.corner(robot, 2))});
+    const ConvexPiece fixed =
+        ConvexPiece::hullOf({e.corner(environment, 0), e.corner(environment, 1), e.corner(environment, 2)});
     const TimeOfContact toc = translationalTimeOfContact(moving, displacement, fixed);
     TranslationContact out;
     out.pairsSolved = 1;
@@ -106,7 +107,8 @@ TranslationContact TranslationContactFinder::firstContact(const RigidTransform &
         start[t] = {lo, hi, t};
         swept[t] = {lo.cwiseMin(lo + displacement), hi.cwiseMax(hi + displacement), t};
     }
-    std::sort(swept.begin(), swept.end(), [](const TriangleBox &p, const TriangleBox &q) { return p.min.x() < q.min.x(); });
+    std::sort(swept.begin(), swept.end(),
+              [](const TriangleBox &p, const TriangleBox &q) { return p.min.x() < q.min.x(); });
 
     // Candidate pairs with the time their boxes first meet.
     struct Candidate
@@ -120,8 +122,7 @@ TranslationContact TranslationContactFinder::firstContact(const RigidTransform &
             e.min.z() - pad > r.max.z())
             return;
         const TriangleBox &s = start[r.triangle];
-        const auto [enter, exit] =
-            overlapTimes(s.min, s.max, displacement, e.min.array() - pad, e.max.array() + pad);
+        const auto [enter, exit] = overlapTimes(s.min, s.max, displacement, e.min.array() - pad, e.max.array() + pad);
         // Rounding of the division: a relative margin, still far below any pair's separation.
         if (enter <= exit + 1e-9)
             candidates.push_back({enter, r.triangle, e.triangle});

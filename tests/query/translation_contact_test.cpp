@@ -47,8 +47,8 @@ RigidTransform translatedBy(const RigidTransform &pose, const Vec3 &offset)
 TEST(TranslationContact, BoxesMeetAtTheClosedFormTime)
 {
     // A unit cube moving along +x towards a cube 3 units ahead: the faces meet after a gap of 2.
-    const TranslationContactFinder finder(sceneOf(test::boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1)),
-                                                  test::boxMesh(Vec3(3, 0.25, 0.25), Vec3(4, 0.75, 0.75))));
+    const TranslationContactFinder finder(
+        sceneOf(test::boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1)), test::boxMesh(Vec3(3, 0.25, 0.25), Vec3(4, 0.75, 0.75))));
     for (double length : {2.0, 2.5, 4.0, 10.0})
     {
         const TranslationContact c = finder.firstContact(RigidTransform(), Vec3(length, 0, 0));
@@ -60,7 +60,8 @@ TEST(TranslationContact, BoxesMeetAtTheClosedFormTime)
     EXPECT_FALSE(finder.firstContact(RigidTransform(), Vec3(-5, 0, 0)).contact);
     // Passing beside it, 1e-6 clear of its side: no contact; and touching it exactly along the way.
     EXPECT_FALSE(finder.firstContact(translatedBy(RigidTransform(), Vec3(0, 0.75 + 1e-6, 0)), Vec3(9, 0, 0)).contact);
-    const TranslationContact grazing = finder.firstContact(translatedBy(RigidTransform(), Vec3(0, 0.75, 0)), Vec3(9, 0, 0));
+    const TranslationContact grazing =
+        finder.firstContact(translatedBy(RigidTransform(), Vec3(0, 0.75, 0)), Vec3(9, 0, 0));
     ASSERT_TRUE(grazing.contact);
     EXPECT_NEAR(grazing.time, 2.0 / 9.0, 1e-9);
 }
@@ -167,8 +168,8 @@ TEST(TranslationContact, AgreesWithDenseSamplingOfTheMotion)
 
 TEST(TranslationContact, NonFiniteInputIsAContactNeverFree)
 {
-    const TranslationContactFinder finder(sceneOf(test::boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1)),
-                                                  test::boxMesh(Vec3(3, 0, 0), Vec3(4, 1, 1))));
+    const TranslationContactFinder finder(
+        sceneOf(test::boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1)), test::boxMesh(Vec3(3, 0, 0), Vec3(4, 1, 1))));
     EXPECT_TRUE(finder.firstContact(RigidTransform(), Vec3(std::nan(""), 0, 0)).contact);
     RigidTransform bad;
     bad.translation.x() = std::numeric_limits<double>::infinity();
