@@ -155,7 +155,7 @@ BENCHMARK_CAPTURE(BM_Orient3d, generic, false);
 BENCHMARK_CAPTURE(BM_Orient3d, on_plane_exact_fallback, true);
 
 // Node-like volumes: each fitted to 24 points of a random flattened blob (extents 0.1..1, random
-// orientation), the second of a pair centred within 2 of the first, so that about half overlap.
+// orientation), the second of a pair centred within 2 of the first (overlap fractions printed).
 template <class Volume>
 std::vector<std::pair<Volume, Volume>> fittedPairs()
 {

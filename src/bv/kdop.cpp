@@ -35,21 +35,27 @@ struct Cone
     std::array<int, 3> slab;     ///< slab index of each direction
     std::array<double, 3> sign;  ///< +1 for n_i, -1 for -n_i
     Mat3 inverse;                ///< maps u to its coefficients on the three directions
-    Vec3 normal;                 ///< outward unit normal of the facet's plane
-    double offset;               ///< its distance from the origin
+};
+
+// The cones, and for each of the k directions (+n_i as i, -n_i as i + k/2) the cones it spans.
+template <int K>
+struct ConeTable
+{
+    std::vector<Cone> cones;
+    std::array<std::vector<int>, K> incident;
 };
 
 template <int K>
-const std::vector<Cone> &cones()
+const ConeTable<K> &cones()
 {
-    static const std::vector<Cone> table = [] {
+    static const ConeTable<K> table = [] {
         constexpr int n = K / 2;
         const auto &dirs = kdopDirections<K>();
         std::vector<Vec3> points;
         for (int s = 0; s < 2; ++s)
             for (int i = 0; i < n; ++i)
                 points.push_back(s == 0 ? dirs[i] : Vec3(-dirs[i]));
-        std::vector<Cone> out;
+        ConeTable<K> out;
         for (int a = 0; a < K; ++a)
             for (int b = a + 1; b < K; ++b)
                 for (int c = b + 1; c < K; ++c)
@@ -77,9 +83,9 @@ const std::vector<Cone> &cones()
                         cone.sign[k] = id < n ? 1.0 : -1.0;
                     }
                     cone.inverse = m.inverse();
-                    cone.normal = normal;
-                    cone.offset = offset;
-                    out.push_back(cone);
+                    for (const int id : {a, b, c})
+                        out.incident[std::size_t(id)].push_back(int(out.cones.size()));
+                    out.cones.push_back(cone);
                 }
         return out;
     }();
@@ -108,18 +114,25 @@ const RotationCombinations<K> &combinationsFor(const Mat3 &rotation)
     for (int m = 0; m < K / 2; ++m)
     {
         const Vec3 u = rotation.transpose() * dirs[m];
-        // The ray along u leaves the hull through the facet with the largest u.normal / offset;
-        // among facets of one plane, the triangle holding u has the largest smallest coefficient.
-        double top = -std::numeric_limits<double>::infinity();
-        for (const Cone &c : table)
-            top = std::max(top, u.dot(c.normal) / c.offset);
+        // The cone holding u is searched among those of u's nearest direction (any cone gives a
+        // valid bound; the one holding u, all coefficients >= 0, gives the tightest): the one
+        // with the largest smallest coefficient.
+        int nearest = 0;
+        double nearestDot = -std::numeric_limits<double>::infinity();
+        for (int i = 0; i < K / 2; ++i)
+        {
+            const double d = u.dot(dirs[i]);
+            if (d > nearestDot)
+                nearestDot = d, nearest = i;
+            if (-d > nearestDot)
+                nearestDot = -d, nearest = i + K / 2;
+        }
         const Cone *best = nullptr;
         double bestMin = -std::numeric_limits<double>::infinity();
         Vec3 bestCoef = Vec3::Zero();
-        for (const Cone &c : table)
+        for (const int f : table.incident[std::size_t(nearest)])
         {
-            if (u.dot(c.normal) / c.offset < top - 1e-9 * std::abs(top))
-                continue;
+            const Cone &c = table.cones[std::size_t(f)];
             const Vec3 coef = c.inverse * u;
             if (coef.minCoeff() > bestMin)
             {
@@ -222,8 +235,9 @@ KDop<K> KDop<K>::transformed(const RigidTransform &pose) const
         {
             const double c = comb.coef[m][k];
             const int i = comb.slab[m][k];
-            up += c > 0 ? c * hi[i] : c * lo[i];
-            down += c > 0 ? c * lo[i] : c * hi[i];
+            const double toHi = c * hi[i], toLo = c * lo[i];  // branch-free: signs vary per rotation
+            up += std::max(toHi, toLo);
+            down += std::min(toHi, toLo);
         }
         const double shift = dirs[m].dot(pose.translation);
         const double pad = 1e-12 * (4.0 * local + std::abs(shift)) + 1e-300;
