@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Micro-benchmarks of the primitives every query is made of: the OBB separating-axis test, the
-// exact triangle-triangle test (generic and coplanar inputs), the orientation predicate.
+// exact triangle-triangle test (generic and coplanar inputs), the orientation predicate; and, for
+// every volume of the trees, one node-pair test and one robot-node placement (BM_Volume*).
 //
 //   build/bench/hybridcd_bench_micro --benchmark_format=json > micro.json
 #include "hybridcd/bv/ellipsoid.h"
 #include "hybridcd/bv/minimum_volume_ellipsoid.h"
 #include "hybridcd/bv/obb.h"
+#include "hybridcd/bvh/volume_traits.h"
 #include "hybridcd/geometry/exact_predicates.h"
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
@@ -151,4 +153,74 @@ void BM_Orient3d(benchmark::State &state, bool degenerate)
 }
 BENCHMARK_CAPTURE(BM_Orient3d, generic, false);
 BENCHMARK_CAPTURE(BM_Orient3d, on_plane_exact_fallback, true);
+
+// Node-like volumes: each fitted to 24 points of a random flattened blob (extents 0.1..1, random
+// orientation), the second of a pair centred within 2 of the first (overlap fractions printed).
+template <class Volume>
+std::vector<std::pair<Volume, Volume>> fittedPairs()
+{
+    std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.1, 1.0);
+    const auto cloud = [&](const Vec3 &centre) {
+        const Mat3 r = randomRotation();
+        const Vec3 extents(e(rng), e(rng), e(rng));
+        std::vector<Vec3> points(24);
+        for (Vec3 &p : points)
+            p = centre + r * Vec3(u(rng), u(rng), u(rng)).cwiseProduct(extents);
+        return points;
+    };
+    std::vector<std::pair<Volume, Volume>> pairs(1024);
+    for (auto &p : pairs)
+    {
+        p.first = VolumeTraits<Volume>::fit(cloud(Vec3::Zero()));
+        p.second = VolumeTraits<Volume>::fit(cloud(2.0 * Vec3(u(rng), u(rng), u(rng))));
+    }
+    return pairs;
+}
+
+// One node-pair test as the trees run it: both volumes in the world frame.
+template <class Volume>
+void BM_VolumeOverlap(benchmark::State &state)
+{
+    const auto pairs = fittedPairs<Volume>();
+    std::size_t i = 0, hits = 0;
+    for (auto _ : state)
+    {
+        const auto &p = pairs[i & 1023];
+        hits += VolumeTraits<Volume>::overlap(p.first, p.second, 1e-12);
+        ++i;
+    }
+    state.counters["overlap fraction"] = double(hits) / double(i);
+}
+
+// Placing one robot node's volume in the world frame (once per node and query).
+template <class Volume>
+void BM_VolumeTransform(benchmark::State &state)
+{
+    const auto pairs = fittedPairs<Volume>();
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<RigidTransform> poses(1024);
+    for (auto &pose : poses)
+        pose = {randomRotation(), Vec3(u(rng), u(rng), u(rng))};
+    std::size_t i = 0;
+    for (auto _ : state)
+    {
+        // A new rotation every 64 nodes, as a query places tens of nodes by one pose.
+        benchmark::DoNotOptimize(VolumeTraits<Volume>::transformed(pairs[i & 1023].first, poses[(i >> 6) & 1023]));
+        ++i;
+    }
+}
+
+#define HCD_VOLUME_BENCHMARKS(Volume, label)                                                                           \
+    BENCHMARK_TEMPLATE(BM_VolumeOverlap, Volume)->Name("BM_VolumeOverlap/" label);                                     \
+    BENCHMARK_TEMPLATE(BM_VolumeTransform, Volume)->Name("BM_VolumeTransform/" label);
+HCD_VOLUME_BENCHMARKS(Obb, "obb")
+HCD_VOLUME_BENCHMARKS(Ellipsoid, "ellipsoid")
+HCD_VOLUME_BENCHMARKS(HybridVolume<false>, "hybrid")
+HCD_VOLUME_BENCHMARKS(HybridVolume<true>, "hybrid-ellipsoid-first")
+HCD_VOLUME_BENCHMARKS(Sphere, "sphere")
+HCD_VOLUME_BENCHMARKS(Aabb, "aabb")
+HCD_VOLUME_BENCHMARKS(FixedAabb, "aabb-fixed")
+HCD_VOLUME_BENCHMARKS(KDop<14>, "kdop14")
+HCD_VOLUME_BENCHMARKS(KDop<18>, "kdop18")
+HCD_VOLUME_BENCHMARKS(KDop<26>, "kdop26")
 }  // namespace

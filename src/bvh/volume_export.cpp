@@ -45,4 +45,15 @@ void appendMappedCube(ExportMesh &mesh, const Vec3 &center, const Mat3 &linear)
         mesh.triangles.push_back({base + std::size_t(f[0]), base + std::size_t(f[2]), base + std::size_t(f[3])});
     }
 }
+
+void appendPolygons(ExportMesh &mesh, const std::vector<std::vector<Vec3>> &polygons)
+{
+    for (const auto &polygon : polygons)
+    {
+        const std::size_t base = mesh.vertices.size();
+        mesh.vertices.insert(mesh.vertices.end(), polygon.begin(), polygon.end());
+        for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+            mesh.triangles.push_back({base, base + k, base + k + 1});
+    }
+}
 }  // namespace hcd

@@ -36,6 +36,13 @@ CheckerCatalogue CheckerCatalogue::builtIn()
     c.add(treeEntry<HybridVolume<false>>("hybrid", "OBB and ellipsoid per node, the box tested first"));
     c.add(treeEntry<HybridVolume<true>>("hybrid-ellipsoid-first",
                                         "OBB and ellipsoid per node, the ellipsoid tested first"));
+    c.add(treeEntry<Sphere>("sphere", "bounding-sphere trees, exact triangle tests at the leaves"));
+    c.add(treeEntry<Aabb>("aabb", "axis-aligned box trees, robot boxes re-boxed in the world frame per query"));
+    c.add(treeEntry<FixedAabb>("aabb-fixed",
+                               "fixed-size axis-aligned boxes (the cube of each bounding sphere), never refitted"));
+    c.add(treeEntry<KDop<14>>("kdop14", "14-DOP trees (axes and cube diagonals), exact triangle tests at the leaves"));
+    c.add(treeEntry<KDop<18>>("kdop18", "18-DOP trees (axes and edge diagonals), exact triangle tests at the leaves"));
+    c.add(treeEntry<KDop<26>>("kdop26", "26-DOP trees (all 13 directions), exact triangle tests at the leaves"));
     c.add({"bruteforce", "every triangle pair, no hierarchy (the slow reference)",
            [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<BruteForceChecker>(s); }});
     c.add({"lp", "OBB trees over convex pieces tested by linear programming; exact, or approximate with a tolerance",

@@ -479,4 +479,10 @@ template class VolumeTreeChecker<Obb>;
 template class VolumeTreeChecker<Ellipsoid>;
 template class VolumeTreeChecker<HybridVolume<false>>;
 template class VolumeTreeChecker<HybridVolume<true>>;
+template class VolumeTreeChecker<Sphere>;
+template class VolumeTreeChecker<Aabb>;
+template class VolumeTreeChecker<FixedAabb>;
+template class VolumeTreeChecker<KDop<14>>;
+template class VolumeTreeChecker<KDop<18>>;
+template class VolumeTreeChecker<KDop<26>>;
 }  // namespace hcd

@@ -117,10 +117,13 @@ TEST(CheckerAgreement, SampleSolutionPathsAreCollisionFree)
             const auto poses = readPoses(entry.path().string(), problem.config.planar);
             for (const std::string &name : CheckerCatalogue::builtIn().names())
             {
-                // The O(pairs) reference is too slow on the largest meshes here. Under sanitizers only
-                // `obb` is built: fitting every hierarchy of every problem (ellipsoids, convex pieces)
+                // The O(pairs) reference is too slow on the largest meshes here (and so are the loosest volumes). Under
+                // sanitizers only `obb` is built: fitting every hierarchy of every problem (ellipsoids, convex pieces)
                 // takes longer than the test's time limit there, and other tests cover those checkers.
-                if (name == "bruteforce" && problem.world.mesh->triangleCount() > 20000)
+                // Spheres and fixed-size boxes bound flat walls so loosely that they take ~1 ms a
+                // state there (bench/README.md); volume_agreement_test covers them elsewhere.
+                const bool slowThere = name == "bruteforce" || name == "sphere" || name == "aabb-fixed";
+                if (slowThere && problem.world.mesh->triangleCount() > 20000)
                     continue;
                 if (test::kSanitizerCaseDivisor > 1 && name != "obb")
                     continue;

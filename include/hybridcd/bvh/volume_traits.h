@@ -6,10 +6,15 @@
 // of slack for rounding), and `lowerBound` must never exceed the true distance.
 #pragma once
 
+#include "hybridcd/bv/aabb.h"
 #include "hybridcd/bv/ellipsoid.h"
+#include "hybridcd/bv/fixed_aabb.h"
 #include "hybridcd/bv/hybrid_volume.h"
+#include "hybridcd/bv/kdop.h"
 #include "hybridcd/bv/minimum_volume_ellipsoid.h"
 #include "hybridcd/bv/obb.h"
+#include "hybridcd/bv/principal_axis.h"
+#include "hybridcd/bv/sphere.h"
 #include "hybridcd/bvh/export_mesh.h"
 
 #include <algorithm>
@@ -24,15 +29,17 @@ template <class Volume>
 struct VolumeTraits;
 
 /// The unit sphere as a UV mesh mapped by x -> center + linear * x (ellipsoids; boxes use the cube).
+/// Polygons (k-DOP faces, counter-clockwise from outside) are appended as triangle fans.
 void appendMappedSphere(ExportMesh &mesh, const Vec3 &center, const Mat3 &linear);
 void appendMappedCube(ExportMesh &mesh, const Vec3 &center, const Mat3 &linear);
+void appendPolygons(ExportMesh &mesh, const std::vector<std::vector<Vec3>> &polygons);
 
 template <>
 struct VolumeTraits<Obb>
 {
     static constexpr const char *kName = "OBB";
     static Obb fit(const std::vector<Vec3> &points) { return Obb::fit(points); }
-    static Vec3 splitAxis(const Obb &b)
+    static Vec3 splitAxis(const Obb &b, const std::vector<Vec3> &)
     {
         int longest = 0;
         b.halfExtents.maxCoeff(&longest);
@@ -58,7 +65,7 @@ struct VolumeTraits<Ellipsoid>
 {
     static constexpr const char *kName = "ellipsoid";
     static Ellipsoid fit(const std::vector<Vec3> &points) { return fitMinimumVolumeEllipsoid(points).ellipsoid; }
-    static Vec3 splitAxis(const Ellipsoid &e)
+    static Vec3 splitAxis(const Ellipsoid &e, const std::vector<Vec3> &)
     {
         int longest = 0;
         e.semiAxes.maxCoeff(&longest);
@@ -97,7 +104,10 @@ struct VolumeTraits<HybridVolume<EllipsoidFirst>>
     {
         return {VolumeTraits<Obb>::fit(points), VolumeTraits<Ellipsoid>::fit(points)};
     }
-    static Vec3 splitAxis(const Volume &v) { return VolumeTraits<Obb>::splitAxis(v.box); }
+    static Vec3 splitAxis(const Volume &v, const std::vector<Vec3> &p)
+    {
+        return VolumeTraits<Obb>::splitAxis(v.box, p);
+    }
     static const Vec3 &center(const Volume &v) { return v.box.center; }
     /// The smaller of the two circumscribed spheres, both taken about the box centre.
     static double radius(const Volume &v)
@@ -126,5 +136,102 @@ struct VolumeTraits<HybridVolume<EllipsoidFirst>>
         VolumeTraits<Obb>::appendMesh(v.box, mesh);
         VolumeTraits<Ellipsoid>::appendMesh(v.ellipsoid, mesh);
     }
+};
+
+template <>
+struct VolumeTraits<Sphere>
+{
+    static constexpr const char *kName = "sphere";
+    static Sphere fit(const std::vector<Vec3> &points) { return Sphere::fit(points); }
+    static Vec3 splitAxis(const Sphere &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    static const Vec3 &center(const Sphere &s) { return s.center; }
+    static double radius(const Sphere &s) { return s.radius; }
+    static double volume(const Sphere &s) { return s.volume(); }
+    static Sphere transformed(const Sphere &s, const RigidTransform &pose) { return s.transformed(pose); }
+    static bool overlap(const Sphere &a, const Sphere &b, double tolerance) { return spheresOverlap(a, b, tolerance); }
+    static double lowerBound(const Sphere &a, const Sphere &b, double tolerance)
+    {
+        return sphereDistanceLowerBound(a, b, tolerance);
+    }
+    static void appendMesh(const Sphere &s, ExportMesh &mesh)
+    {
+        appendMappedSphere(mesh, s.center, s.radius * Mat3::Identity());
+    }
+};
+
+/// Dynamic boxes: robot boxes are boxed again in the world frame for each pose.
+template <>
+struct VolumeTraits<Aabb>
+{
+    static constexpr const char *kName = "AABB";
+    static Aabb fit(const std::vector<Vec3> &points) { return Aabb::fit(points); }
+    static Vec3 splitAxis(const Aabb &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    static const Vec3 &center(const Aabb &b) { return b.center; }
+    static double radius(const Aabb &b) { return b.halfExtents.norm() * (1.0 + 1e-12); }
+    static double volume(const Aabb &b) { return b.volume(); }
+    static Aabb transformed(const Aabb &b, const RigidTransform &pose) { return b.transformed(pose); }
+    static bool overlap(const Aabb &a, const Aabb &b, double tolerance) { return aabbsOverlap(a, b, tolerance); }
+    static double lowerBound(const Aabb &a, const Aabb &b, double tolerance)
+    {
+        return aabbDistanceLowerBound(a, b, tolerance);
+    }
+    static void appendMesh(const Aabb &b, ExportMesh &mesh)
+    {
+        appendMappedCube(mesh, b.center, b.halfExtents.asDiagonal());
+    }
+};
+
+/// Fixed-size boxes: the cube of each node's bounding sphere, never refitted.
+template <>
+struct VolumeTraits<FixedAabb>
+{
+    static constexpr const char *kName = "fixed AABB";
+    static FixedAabb fit(const std::vector<Vec3> &points) { return FixedAabb::fit(points); }
+    static Vec3 splitAxis(const FixedAabb &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    static const Vec3 &center(const FixedAabb &b) { return b.center; }
+    /// The cube's own circumscribed sphere (not the tighter sphere it was made from), so that
+    /// the tree tests boxes and not spheres.
+    static double radius(const FixedAabb &b) { return std::sqrt(3.0) * b.halfSide * (1.0 + 1e-12); }
+    static double volume(const FixedAabb &b) { return b.volume(); }
+    static FixedAabb transformed(const FixedAabb &b, const RigidTransform &pose) { return b.transformed(pose); }
+    static bool overlap(const FixedAabb &a, const FixedAabb &b, double tolerance)
+    {
+        return fixedAabbsOverlap(a, b, tolerance);
+    }
+    static double lowerBound(const FixedAabb &a, const FixedAabb &b, double tolerance)
+    {
+        return fixedAabbDistanceLowerBound(a, b, tolerance);
+    }
+    static void appendMesh(const FixedAabb &b, ExportMesh &mesh)
+    {
+        appendMappedCube(mesh, b.center, b.halfSide * Mat3::Identity());
+    }
+};
+
+template <int K>
+struct VolumeTraits<KDop<K>>
+{
+    using Volume = KDop<K>;
+    static constexpr const char *kName = K == 14 ? "14-DOP" : K == 18 ? "18-DOP" : "26-DOP";
+    static Volume fit(const std::vector<Vec3> &points) { return Volume::fit(points); }
+    static Vec3 splitAxis(const Volume &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    static const Vec3 &center(const Volume &d) { return d.center; }
+    /// Half the diagonal of the box slabs, about their centre: the box holds the polytope.
+    static double radius(const Volume &d)
+    {
+        return 0.5 * Vec3(d.hi[0] - d.lo[0], d.hi[1] - d.lo[1], d.hi[2] - d.lo[2]).norm() * (1.0 + 1e-12);
+    }
+    static double volume(const Volume &d) { return d.volume(); }
+    static Volume transformed(const Volume &d, const RigidTransform &pose) { return d.transformed(pose); }
+    /// What mapping many volumes by one pose shares (see PlacementOf in query/placed_robot.h).
+    using Placement = KDopRotation<K>;
+    static Placement placement(const RigidTransform &pose) { return Placement::of(pose); }
+    static Volume transformed(const Volume &d, const Placement &mapping) { return d.transformed(mapping); }
+    static bool overlap(const Volume &a, const Volume &b, double tolerance) { return kdopsOverlap(a, b, tolerance); }
+    static double lowerBound(const Volume &a, const Volume &b, double tolerance)
+    {
+        return kdopDistanceLowerBound(a, b, tolerance);
+    }
+    static void appendMesh(const Volume &d, ExportMesh &mesh) { appendPolygons(mesh, d.faces()); }
 };
 }  // namespace hcd

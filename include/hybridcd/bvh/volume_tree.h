@@ -2,7 +2,8 @@
 // A binary bounding-volume hierarchy over the triangles of one mesh, for any volume type.
 //
 // Build: top-down. Each node's volume is fitted to the corners of its triangles (VolumeTraits<V>::fit).
-// The node's triangles are split across the volume's split axis (its longest direction) at the mean
+// The node's triangles are split across the volume's split axis (its longest direction, or the
+// principal axis of the corners for volumes without one) at the mean
 // of their centroids (Gottschalk's rule); if every centroid lands on one side, at the median
 // instead. Nodes are stored in one array with the two children of a node adjacent; leaves hold a
 // run of the tree's reordered triangle list. The same code builds the OBB tree, the ellipsoid
@@ -87,7 +88,7 @@ private:
         if (end - begin <= maxLeafTriangles_)
             return;
 
-        const Vec3 axis = Traits::splitAxis(self.volume);
+        const Vec3 axis = Traits::splitAxis(self.volume, scratch);
         double mean = 0.0;
         for (std::uint32_t i = begin; i < end; ++i)
             mean += axis.dot(centroids[order_[i]]);

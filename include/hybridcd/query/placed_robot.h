@@ -8,10 +8,26 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace hcd
 {
+/// What mapping a volume type by a pose needs: the pose itself, or, when VolumeTraits<Volume>
+/// declares a Placement (k-DOPs: per-rotation combinations), that, worked out once per query.
+template <class Volume, class = void>
+struct PlacementOf
+{
+    using Type = RigidTransform;
+    static Type of(const RigidTransform &pose) { return pose; }
+};
+template <class Volume>
+struct PlacementOf<Volume, std::void_t<typename VolumeTraits<Volume>::Placement>>
+{
+    using Type = typename VolumeTraits<Volume>::Placement;
+    static Type of(const RigidTransform &pose) { return VolumeTraits<Volume>::placement(pose); }
+};
+
 /// A robot triangle in world coordinates with its axis-aligned bounds.
 struct PlacedTriangle
 {
@@ -30,6 +46,7 @@ public:
     PlacedRobot(const VolumeTree<Volume> &tree, const RigidTransform &worldFromRobot, QueryContext &context)
         : tree_(tree),
           pose_(worldFromRobot),
+          placement_(PlacementOf<Volume>::of(worldFromRobot)),
           s_(context.scratch<Scratch>()),
           query_(++s_.query)
     {
@@ -40,8 +57,9 @@ public:
     /// World-frame volume of robot tree node `node`.
     const Volume &volume(std::uint32_t node)
     {
-        return s_.volumes.get(
-            node, query_, [&](Volume &v) { v = VolumeTraits<Volume>::transformed(tree_.nodes()[node].volume, pose_); });
+        return s_.volumes.get(node, query_, [&](Volume &v) {
+            v = VolumeTraits<Volume>::transformed(tree_.nodes()[node].volume, placement_);
+        });
     }
 
     /// World-frame corners of robot mesh triangle `t`, mapped by RigidTransform::apply (exactly as
@@ -67,6 +85,7 @@ private:
 
     const VolumeTree<Volume> &tree_;
     RigidTransform pose_;
+    typename PlacementOf<Volume>::Type placement_;
     Scratch &s_;
     std::uint64_t query_;
 };

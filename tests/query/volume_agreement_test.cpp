@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Every catalogue checker answers as bruteforce for collides, distance and contacts, on uniform
+// poses and on poses within 1e-9 of contact (pairs found by bisection: one touching or
+// overlapping, one free), on OMPL.app problems. Near contact is where a volume test that says
+// "apart" wrongly, or a distance bound above the truth, shows.
+#include "support/test_support.h"
+
+#include "hybridcd/query/checker_catalogue.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <tuple>
+
+using namespace hcd;
+
+namespace
+{
+using ContactKey = std::tuple<int, std::uint32_t, std::uint32_t>;
+
+std::vector<ContactKey> keysOf(const std::vector<ContactPair> &contacts)
+{
+    std::vector<ContactKey> keys;
+    for (const ContactPair &c : contacts)
+        keys.emplace_back(int(c.kind), c.robotElement, c.environmentElement);
+    std::sort(keys.begin(), keys.end());
+    return keys;
+}
+
+// Pairs of poses with one rotation and translations at most 1e-9 apart, the first colliding and
+// the second free (by `guide`, which the agreement test elsewhere checks against bruteforce; the
+// answers here are compared with bruteforce itself). From colliding random poses the robot is
+// moved straight out of the environment's bounding sphere, and the segment bisected.
+std::vector<RigidTransform> nearContactPoses(const LoadedProblem &problem, const CollisionChecker &guide,
+                                             std::size_t pairs, test::TestRandom &rng)
+{
+    const double reach =
+        2.0 * (problem.scene.environment->radiusAboutOrigin() + problem.scene.robot->radiusAboutOrigin());
+    std::vector<RigidTransform> out;
+    for (const RigidTransform &pose : test::randomPoses(problem, 40 * pairs, rng))
+    {
+        if (out.size() >= 2 * pairs)
+            break;
+        if (!guide.collides(pose))
+            continue;
+        Vec3 direction = test::randomRotation(rng).col(0);
+        if (problem.config.planar)
+            direction.z() = 0.0;
+        if (!(direction.norm() > 0.1))
+            continue;
+        const Vec3 far = pose.translation + (reach + pose.translation.norm()) * direction.normalized();
+        Vec3 in = pose.translation, outside = far;
+        if (guide.collides({pose.rotation, outside}))
+            continue;
+        while ((outside - in).norm() > 1e-9)
+        {
+            const Vec3 mid = 0.5 * (in + outside);
+            if (mid == in || mid == outside)
+                break;
+            (guide.collides({pose.rotation, mid}) ? in : outside) = mid;
+        }
+        out.push_back({pose.rotation, in});
+        out.push_back({pose.rotation, outside});
+    }
+    return out;
+}
+
+void checkProblem(const std::string &cfg, std::size_t uniformCount, std::size_t distanceCount, std::size_t nearPairs)
+{
+    const std::string relative = std::filesystem::path(cfg).filename().string();
+    const LoadedProblem problem = loadProblem(cfg);
+    test::TestRandom rng(test::seeded(1913));
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    const auto uniform = test::randomPoses(problem, uniformCount, rng);
+    const auto near = nearContactPoses(problem, *makeChecker("obb", problem.scene), nearPairs, rng);
+    ASSERT_GE(near.size(), nearPairs) << relative;  // enough colliding poses to start from
+
+    // The reference answers, once.
+    struct Expected
+    {
+        bool collides;
+        std::vector<ContactKey> contacts;
+        double distance = -1.0;  ///< computed for the first poses of each kind only (it is O(pairs))
+    };
+    std::vector<RigidTransform> poses = uniform;
+    poses.insert(poses.end(), near.begin(), near.end());
+    std::vector<Expected> expected;
+    std::size_t colliding = 0, nearFree = 0;
+    for (std::size_t i = 0; i < poses.size(); ++i)
+    {
+        const bool isNear = i >= uniform.size();
+        const bool withDistance = isNear ? (i - uniform.size()) < 2 * distanceCount : i < distanceCount;
+        Expected e{reference->collides(poses[i]), keysOf(reference->contacts(poses[i], 1000000))};
+        if (withDistance)
+            e.distance = reference->distance(poses[i]);
+        colliding += e.collides ? 1 : 0;
+        if (isNear && !e.collides)
+        {
+            ++nearFree;
+            if (withDistance)
+                EXPECT_LE(e.distance, 1e-8) << "the free pose of a pair is within 1e-9 of contact";
+        }
+        expected.push_back(std::move(e));
+    }
+    EXPECT_GT(colliding, poses.size() / 10) << relative;
+    EXPECT_GE(nearFree, near.size() / 2 - near.size() / 20) << relative;
+
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
+    {
+        if (name == "bruteforce")
+            continue;
+        const auto checker = makeChecker(name, problem.scene);
+        std::size_t wrong = 0;
+        for (std::size_t i = 0; i < poses.size(); ++i)
+        {
+            const Expected &e = expected[i];
+            const char *kind = i < uniform.size() ? "uniform" : "near-contact";
+            const bool collides = checker->collides(poses[i]);
+            EXPECT_EQ(collides, e.collides) << name << " collides, " << kind << " pose " << i << " of " << relative;
+            EXPECT_EQ(keysOf(checker->contacts(poses[i], 1000000)), e.contacts)
+                << name << " contacts, " << kind << " pose " << i << " of " << relative;
+            if (e.distance >= 0.0)
+                EXPECT_EQ(checker->distance(poses[i]), e.distance)
+                    << name << " distance, " << kind << " pose " << i << " of " << relative;
+            wrong += collides != e.collides ? 1 : 0;
+        }
+        std::cout << "[ agreement ] " << name << " vs bruteforce on " << std::filesystem::path(cfg).filename().string()
+                  << ": " << uniform.size() << " uniform and " << near.size()
+                  << " near-contact poses (collides, contacts; distance on a subset), " << wrong
+                  << " collision disagreements\n";
+    }
+}
+}  // namespace
+
+// 400 uniform poses and 100 near-contact pairs per problem; distance on 10 of each kind. Every
+// OMPL.app problem of bench/README.md but Apartment, where the reference takes minutes.
+#define HCD_AGREEMENT(Name, relative)                                                                                  \
+    TEST(VolumeAgreement, Name)                                                                                        \
+    {                                                                                                                  \
+        HYBRIDCD_REQUIRE_OMPLAPP(cfg, relative);                                                                       \
+        checkProblem(cfg, test::cases(400), 10, test::cases(100));                                                     \
+    }
+HCD_AGREEMENT(Cubicles, "3D/cubicles.cfg")
+HCD_AGREEMENT(Twistycool, "3D/Twistycool.cfg")
+HCD_AGREEMENT(Alpha15, "3D/alpha-1.5.cfg")
+HCD_AGREEMENT(Easy, "3D/Easy.cfg")
+HCD_AGREEMENT(Home, "3D/Home.cfg")
+HCD_AGREEMENT(Bugtrap, "3D/bugtrap.cfg")
+HCD_AGREEMENT(Abstract, "3D/Abstract.cfg")
+HCD_AGREEMENT(MazePlanar, "2D/Maze_planar.cfg")
+HCD_AGREEMENT(BugTrapPlanar, "2D/BugTrap_planar.cfg")
