@@ -20,9 +20,9 @@
 
 #include <chrono>
 #include <cstdlib>
-#include <tuple>
 #include <iostream>
 #include <sstream>
+#include <tuple>
 
 namespace hcd::cli
 {

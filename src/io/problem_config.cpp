@@ -255,7 +255,8 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
         if (planarModel != cfg.planar)
             throw InputError(path, c->line,
                              "control = " + model + " is a " + (planarModel ? "planar" : "3D") +
-                                 " vehicle, but this is a " + (cfg.planar ? "planar problem (no start.z)" : "3D problem"));
+                                 " vehicle, but this is a " +
+                                 (cfg.planar ? "planar problem (no start.z)" : "3D problem"));
         cfg.control = model;
         cfg.controlLine = c->line;
     }

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/ompl/control_problem.h"
 
-#include "hybridcd/ompl/continuous_motion_validator.h"
-
 #include <ompl/base/ProjectionEvaluator.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -22,7 +20,9 @@ class PositionProjection : public ob::ProjectionEvaluator
 {
 public:
     PositionProjection(const ob::StateSpacePtr &space, VehicleModel model, ob::RealVectorBounds bounds)
-        : ob::ProjectionEvaluator(space), model_(model), positionBounds_(std::move(bounds))
+        : ob::ProjectionEvaluator(space),
+          model_(model),
+          positionBounds_(std::move(bounds))
     {
     }
 
@@ -73,7 +73,9 @@ void configPoseToVehicleState(const ConfigPose &pose, VehicleModel model, bool p
 
 ControlValidityChecker::ControlValidityChecker(const ob::SpaceInformationPtr &si, VehicleModel model,
                                                std::shared_ptr<const hcd::StateValidityChecker> poseValidity)
-    : ob::StateValidityChecker(si), model_(model), poseValidity_(std::move(poseValidity))
+    : ob::StateValidityChecker(si),
+      model_(model),
+      poseValidity_(std::move(poseValidity))
 {
 }
 
@@ -116,22 +118,15 @@ ControlProblem makeControlProblem(const LoadedProblem &problem, std::shared_ptr<
     const ob::StateSpacePtr poseSubspace =
         *model == VehicleModel::KinematicCar ? space : space->as<ob::CompoundStateSpace>()->getSubspace(0);
     out.poseSpace = std::make_shared<ob::SpaceInformation>(poseSubspace);
-    out.poseValidity = std::make_shared<StateValidityChecker>(out.poseSpace, std::move(checker), problem.scene,
-                                                              cfg.planar);
+    out.poseValidity =
+        std::make_shared<StateValidityChecker>(out.poseSpace, std::move(checker), problem.scene, cfg.planar);
     out.poseSpace->setStateValidityChecker(out.poseValidity);
-    std::shared_ptr<ContinuousMotionValidator> sweep;
-    if (settings.motion == MotionCheck::Continuous)
-    {
-        const BoundingBox box = problem.world.mesh->bounds();
-        const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
-        sweep = std::make_shared<ContinuousMotionValidator>(out.poseSpace, out.poseValidity,
-                                                            problem.robot.mesh->radiusAboutOrigin(), scale);
-        out.poseSpace->setMotionValidator(sweep);
-    }
     out.poseSpace->setup();
 
     si->setStateValidityChecker(std::make_shared<ControlValidityChecker>(si, *model, out.poseValidity));
-    out.propagator = std::make_shared<VehiclePropagator>(si, *model, settings.integrationStep, sweep);
+    out.propagator = std::make_shared<VehiclePropagator>(
+        si, *model, settings.integrationStep, settings.motion == MotionCheck::Continuous ? out.poseValidity : nullptr,
+        problem.robot.mesh->radiusAboutOrigin());
     si->setStatePropagator(out.propagator);
     si->setPropagationStepSize(settings.propagationStep);
     si->setMinMaxControlDuration(settings.minControlSteps, settings.maxControlSteps);

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace ob = ompl::base;
@@ -230,6 +231,45 @@ void finishPropagation(VehicleModel model, std::vector<double> &q)
         for (std::size_t i = 0; i < spec.extraLow.size(); ++i)
             q[offset + i] = std::clamp(q[offset + i], spec.extraLow[i], spec.extraHigh[i]);
     }
+}
+
+MotionBounds motionBounds(VehicleModel model, const std::vector<double> &q, const double *u, double length)
+{
+    const VehicleSpec &spec = vehicleSpec(model);
+    const double inf = std::numeric_limits<double>::infinity();
+    MotionBounds b;
+    switch (model)
+    {
+    case VehicleModel::KinematicCar:
+        b.speed = std::abs(u[0]);
+        b.angularSpeed = std::abs(u[0] * std::tan(u[1])) / spec.length;
+        break;
+    case VehicleModel::DynamicCar:
+    {
+        // v and phi change linearly: their extremes are at the ends of the interval.
+        b.speed = std::max(std::abs(q[3]), std::abs(q[3] + u[0] * length));
+        const double phi = std::max(std::abs(q[4]), std::abs(q[4] + u[1] * length));
+        b.angularSpeed = phi < 0.5 * kPi ? b.speed * spec.mass * std::tan(phi) / spec.length : inf;
+        break;
+    }
+    case VehicleModel::Blimp:
+        // |v'| = |(u0 cos, u0 sin, u1)| = hypot(u0, u1); |omega'| = |u2|.
+        b.speed = std::sqrt(q[4] * q[4] + q[5] * q[5] + q[6] * q[6]) + std::hypot(u[0], u[1]) * length;
+        b.angularSpeed = std::abs(q[7]) + std::abs(u[2]) * length;
+        break;
+    case VehicleModel::Quadrotor:
+    {
+        // |v'| <= c + k |v| with c = |u0| / m + g, k = beta / m (|n| = 1), so by Gronwall's
+        // inequality |v(s)| <= (|v0| + c / k) e^{k s} - c / k.
+        const double v0 = std::sqrt(q[7] * q[7] + q[8] * q[8] + q[9] * q[9]);
+        const double c = std::abs(u[0]) / spec.mass + spec.gravity, k = spec.damping / spec.mass;
+        b.speed = k > 0.0 ? (v0 + c / k) * std::exp(k * length) - c / k : v0 + c * length;
+        b.angularSpeed = std::sqrt(q[10] * q[10] + q[11] * q[11] + q[12] * q[12]) +
+                         std::sqrt(u[1] * u[1] + u[2] * u[2] + u[3] * u[3]) * length;
+        break;
+    }
+    }
+    return b;
 }
 
 ob::StateSpacePtr makeVehicleStateSpace(VehicleModel model, const ob::RealVectorBounds &poseBounds)

@@ -159,17 +159,16 @@ using ControlFactory = std::function<ompl::base::PlannerPtr(const ompl::control:
 template <typename T>
 ControlFactory makeControl()
 {
-    return [](const ompl::control::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
-        return std::make_shared<T>(si);
-    };
+    return
+        [](const ompl::control::SpaceInformationPtr &si) -> ompl::base::PlannerPtr { return std::make_shared<T>(si); };
 }
 
 const std::map<std::string, ControlFactory> &controlCatalogue()
 {
     namespace oc = ompl::control;
     static const std::map<std::string, ControlFactory> table = {
-        {"est", makeControl<oc::EST>()},   {"kpiece", makeControl<oc::KPIECE1>()}, {"pdst", makeControl<oc::PDST>()},
-        {"rrt", makeControl<oc::RRT>()},   {"sst", makeControl<oc::SST>()},
+        {"est", makeControl<oc::EST>()}, {"kpiece", makeControl<oc::KPIECE1>()}, {"pdst", makeControl<oc::PDST>()},
+        {"rrt", makeControl<oc::RRT>()}, {"sst", makeControl<oc::SST>()},
     };
     return table;
 }
@@ -223,9 +222,9 @@ ompl::base::PlannerPtr makeControlPlanner(const PlannerRequest &request, const o
     const std::string type = toLower(trim(request.type));
     const auto it = controlCatalogue().find(type);
     if (it == controlCatalogue().end())
-        throw std::invalid_argument("unknown control planner '" + request.type +
-                                    "' for a kinodynamic problem; valid control planners: " +
-                                    join(controlPlannerNames()));
+        throw std::invalid_argument(
+            "unknown control planner '" + request.type +
+            "' for a kinodynamic problem; valid control planners: " + join(controlPlannerNames()));
     ompl::base::PlannerPtr planner = it->second(si);
     applyRequest(request, type, *planner);
     return planner;

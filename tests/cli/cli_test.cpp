@@ -52,9 +52,9 @@ TEST(Cli, SolveRunsAControlPlannerOnAKinodynamicProblem)
 {
     const std::string cfg = test::sourcePath("problems/corridor_kcar.cfg");
     const std::string out = test::writeTempFile("kcar.path", "");
-    const CliRun r = run("solve " + cfg + " --planner sst --seed 2 --time 60 --out " + out);
+    const CliRun r = run("solve " + cfg + " --planner rrt --seed 2 --time 60 --out " + out);
     ASSERT_EQ(r.status, 0) << r.output;
-    for (const char *field : {"(kinematic_car, SE2 pose)", "planner: SST (control)", "solved: yes",
+    for (const char *field : {"(kinematic_car, SE2 pose)", "planner: RRT (control)", "solved: yes",
                               "propagation step: 0.2 s, controls of 1 to 20 steps", "states written"})
         EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
     // Rows: x y theta, speed, steering angle, duration; poses readable as OMPL.app .path poses.
@@ -65,8 +65,9 @@ TEST(Cli, SolveRunsAControlPlannerOnAKinodynamicProblem)
     for (const PoseRecord &p : poses)
         EXPECT_FALSE(reference->collides(transformOfRow(p.values.data(), true)));
     EXPECT_NEAR(poses.front().values[0], problem.config.start.x, 1e-9);
-    EXPECT_LT(std::hypot(poses.back().values[0] - problem.config.goal.x, poses.back().values[1] - problem.config.goal.y),
-              1.0);
+    EXPECT_LT(
+        std::hypot(poses.back().values[0] - problem.config.goal.x, poses.back().values[1] - problem.config.goal.y),
+        1.0);
     std::ifstream in(out);
     std::string header, row;
     std::getline(in, header);
@@ -96,9 +97,11 @@ TEST(Cli, KinodynamicProblemsRefuseWhatCannotBeDone)
     };
     const Case cases[] = {
         {"solve " + hover + " --out /dev/null", "hover.cfg:4: unknown control model 'hovercraft'"},
-        {"solve " + kcar + " --planner rrtconnect --out /dev/null", "valid control planners: est, kpiece, pdst, rrt, sst"},
+        {"solve " + kcar + " --planner rrtconnect --out /dev/null",
+         "valid control planners: est, kpiece, pdst, rrt, sst"},
         {"bench " + kcar + " --out /dev/null", "corridor_kcar.cfg:5: control = kinematic_car: `bench` runs geometric"},
-        {"solve " + problem3d() + " --goal-threshold 2 --out /dev/null", "--goal-threshold is for kinodynamic problems"},
+        {"solve " + problem3d() + " --goal-threshold 2 --out /dev/null",
+         "--goal-threshold is for kinodynamic problems"},
         {"solve " + kcar + " --control-steps 5,2 --out /dev/null", "MIN exceeds MAX"},
     };
     for (const Case &c : cases)

@@ -148,8 +148,9 @@ TEST(ProblemConfig, ControlModelsAreKnownAndMatchTheDimension)
               std::string::npos);
     EXPECT_NE(errorOf(planar + "control = quadrotor\n").find("bad.cfg:8: control = quadrotor is a 3D vehicle"),
               std::string::npos);
-    EXPECT_NE(errorOf(std::string(kMinimal) + "control = dynamic_car\n").find("bad.cfg:10: control = dynamic_car is a "
-                                                                              "planar vehicle"),
+    EXPECT_NE(errorOf(std::string(kMinimal) + "control = dynamic_car\n")
+                  .find("bad.cfg:10: control = dynamic_car is a "
+                        "planar vehicle"),
               std::string::npos);
     EXPECT_EQ(errorOf(std::string(kMinimal) + "control = blimp\n"), "");
     EXPECT_EQ(errorOf(planar + "control = dynamic_car\n"), "");

@@ -24,8 +24,8 @@ struct ControlSettings
     unsigned minControlSteps = 1;  ///< each control lasts between these numbers of propagation steps
     unsigned maxControlSteps = 20;
     double integrationStep = 0.01;  ///< s, the Runge-Kutta step
-    /// Continuous: each integration step's motion is certified collision-free as well
-    /// (VehiclePropagator); Discrete: states are checked at the propagation steps only, as OMPL.app.
+    /// Continuous: the whole trajectory is certified collision-free as well (VehiclePropagator);
+    /// Discrete: states are checked at the propagation steps only, as OMPL.app does.
     MotionCheck motion = MotionCheck::Continuous;
 };
 

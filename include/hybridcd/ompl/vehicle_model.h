@@ -48,8 +48,8 @@ const char *vehicleModelName(VehicleModel model);
 /// Constants and limits of a model (OMPL.app's defaults).
 struct VehicleSpec
 {
-    bool planar = true;                      ///< SE2 pose (cars) or SE3 pose (blimp, quadrotor)
-    unsigned coordinates = 0;                ///< size of q
+    bool planar = true;        ///< SE2 pose (cars) or SE3 pose (blimp, quadrotor)
+    unsigned coordinates = 0;  ///< size of q
     std::vector<double> controlLow, controlHigh;
     /// Bounds of the state beyond the pose, in OMPL's state order (velocities, steering angle).
     std::vector<double> extraLow, extraHigh;
@@ -86,6 +86,19 @@ ompl::control::ControlSpacePtr makeVehicleControlSpace(VehicleModel model, const
 /// The SE2 or SE3 component of a state of makeVehicleStateSpace's space.
 const ompl::base::State *poseComponent(VehicleModel model, const ompl::base::State *state);
 ompl::base::State *poseComponent(VehicleModel model, ompl::base::State *state);
+
+/// Bounds on how fast the vehicle moves during a time interval: the speed of the robot origin
+/// (m/s) and the angular speed (rad/s), so that a robot point p moves at most
+/// (speed + angularSpeed |p|) per second. Infinite when the model gives no bound.
+struct MotionBounds
+{
+    double speed = 0.0;
+    double angularSpeed = 0.0;
+};
+
+/// Bounds valid over [t, t + length] for the trajectory from model coordinates `q` at t under the
+/// constant control `u`, from the equations alone (velocities as integrated, before any clamp).
+MotionBounds motionBounds(VehicleModel model, const std::vector<double> &q, const double *u, double length);
 
 /// State <-> model coordinates (the blimp's heading is read from its quaternion as a yaw).
 std::vector<double> vehicleCoordinates(VehicleModel model, const ompl::base::State *state);
