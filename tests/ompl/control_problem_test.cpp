@@ -53,6 +53,19 @@ LoadedProblem thinWallProblem()
     return loadProblem(cfg);
 }
 
+// A blimp problem: a 0.6 x 0.6 x 0.2 body, a pillar between start and goal.
+LoadedProblem pillarProblem(const std::string &model)
+{
+    const std::string robot = test::writeTempFile("body.obj", boxObj({-0.3, -0.3, -0.1}, {0.3, 0.3, 0.1}));
+    const std::string world = test::writeTempFile("pillar.obj", boxObj({1.5, -0.5, 0.0}, {2.0, 0.5, 10.0}));
+    const std::string cfg = test::writeTempFile(
+        model + "_pillar.cfg", "[problem]\nrobot = " + robot + "\nworld = " + world + "\ncontrol = " + model +
+                                   "\nstart.x = 0\nstart.y = 0\nstart.z = 5\ngoal.x = 4\ngoal.y = 0\ngoal.z = 5\n"
+                                   "volume.min.x = -6\nvolume.min.y = -6\nvolume.min.z = 0\nvolume.max.x = 6\n"
+                                   "volume.max.y = 6\nvolume.max.z = 10\n");
+    return loadProblem(cfg);
+}
+
 // Re-propagates every control of `path` from its own start state in steps of 1 ms, checking each
 // pose with brute force and the bounds; the end must match the path's next state and the last
 // state must satisfy the goal.
@@ -67,18 +80,27 @@ void expectPathValid(const ControlProblem &planning, const LoadedProblem &proble
     {
         const double *u = path.getControl(i)->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
         std::vector<double> q = vehicleCoordinates(planning.model, path.getState(i));
-        const double duration = path.getControlDuration(i);
-        const int steps = int(std::ceil(duration / 1e-3 - 1e-9));
-        for (int k = 0; k < steps; ++k)
+        // Propagation step by step, as OMPL propagates (the post-step, a velocity clamp for
+        // some models, ends each), each step in 1 ms pieces.
+        const double step = si->getPropagationStepSize();
+        const int propagations = int(std::lround(path.getControlDuration(i) / step));
+        ASSERT_NEAR(propagations * step, path.getControlDuration(i), 1e-9);
+        for (int p = 0; p < propagations; ++p)
         {
-            integrateVehicle(planning.model, q, u, duration / steps, 1e-3);
-            std::vector<double> shown = q;
-            finishPropagation(planning.model, shown);
-            setVehicleCoordinates(planning.model, shown, s);
-            ASSERT_TRUE(si->satisfiesBounds(s)) << "control " << i << " step " << k;
-            ASSERT_FALSE(bruteForce->collides(poseOfState(poseComponent(planning.model, s), problem.config.planar)))
-                << "control " << i << " step " << k;
-            ++checked;
+            if (p > 0)
+                finishPropagation(planning.model, q);
+            const int pieces = int(std::ceil(step / 1e-3 - 1e-9));
+            for (int k = 0; k < pieces; ++k)
+            {
+                integrateVehicle(planning.model, q, u, step / pieces, 1e-3);
+                std::vector<double> shown = q;
+                finishPropagation(planning.model, shown);
+                setVehicleCoordinates(planning.model, shown, s);
+                ASSERT_TRUE(si->satisfiesBounds(s)) << "control " << i << " step " << p << "." << k;
+                ASSERT_FALSE(bruteForce->collides(poseOfState(poseComponent(planning.model, s), problem.config.planar)))
+                    << "control " << i << " step " << p << "." << k;
+                ++checked;
+            }
         }
         finishPropagation(planning.model, q);
         setVehicleCoordinates(planning.model, q, s);
@@ -364,6 +386,20 @@ TEST(ControlProblem, EveryControlPlannerDrivesAroundTheWallAndThePathHolds)
         ASSERT_EQ(status, ompl::base::PlannerStatus::EXACT_SOLUTION) << planner;
         expectPathValid(planning, problem, planning.setup->getSolutionPath());
         EXPECT_GT(planning.poseValidity->checkCount(), 0u);
+    }
+}
+
+TEST(ControlProblem, BlimpFliesAroundAPillarAndThePathHolds)
+{
+    const LoadedProblem problem = pillarProblem("blimp");
+    for (const char *planner : {"kpiece", "rrt"})
+    {
+        ompl::RNG::setSeed(std::uint_fast32_t(test::seed()));
+        ControlProblem planning = makeControlProblem(problem, makeChecker("obb", problem.scene));
+        EXPECT_EQ(planning.model, VehicleModel::Blimp);
+        planning.setup->setPlanner(makeControlPlanner({planner, "", {}}, planning.setup->getSpaceInformation()));
+        ASSERT_EQ(planning.setup->solve(60.0), ompl::base::PlannerStatus::EXACT_SOLUTION) << planner;
+        expectPathValid(planning, problem, planning.setup->getSolutionPath());
     }
 }
 
