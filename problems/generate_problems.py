@@ -119,10 +119,10 @@ def _write(name, lines):
         f.write("\n".join(lines) + "\n")
 
 
-def write_cfg(name, problem, planners=("rrtconnect", "rrt", "kpiece")):
+def write_cfg(name, problem, planners=("rrtconnect", "rrt", "kpiece"), time_limit="10.0"):
     lines = ["[problem]"]
     lines += ["%s = %s" % (k, v) for k, v in problem]
-    lines += ["", "[benchmark]", "time_limit=10.0", "mem_limit=1000.0", "run_count=10",
+    lines += ["", "[benchmark]", "time_limit=%s" % time_limit, "mem_limit=1000.0", "run_count=10",
               "", "[planner]"]
     lines += ["%s=" % p for p in planners]
     _write(name, lines)
@@ -217,6 +217,26 @@ CORRIDOR_2D_CFG = [
     ("volume.max.y", "30.0"),
 ]
 
+# corridor_kcar: the corridor_2d scene driven by OMPL.app's kinematic car (speed up to 5, steering
+# up to 30 degrees, axle distance 1), from the first room over the top gap into the second room:
+# small enough for a control planner to solve in a few seconds.
+CORRIDOR_KCAR_CFG = [
+    ("name", "corridor_kcar"),
+    ("robot", "corridor_2d_robot.obj"),
+    ("world", "corridor_2d_env.obj"),
+    ("control", "kinematic_car"),
+    ("start.x", "-40.0"),
+    ("start.y", "-20.0"),
+    ("start.theta", "0.0"),
+    ("goal.x", "-12.0"),
+    ("goal.y", "-20.0"),
+    ("goal.theta", "0.0"),
+    ("volume.min.x", "-50.0"),
+    ("volume.min.y", "-30.0"),
+    ("volume.max.x", "50.0"),
+    ("volume.max.y", "30.0"),
+]
+
 
 def main():
     write_obj("window_3d_env.obj", WINDOW_3D_ENV,
@@ -229,6 +249,7 @@ def main():
     write_obj("corridor_2d_robot.obj", CORRIDOR_2D_ROBOT,
               ["corridor_2d robot: 4x2 rectangle extruded over z in [-0.5,0.5]"])
     write_cfg("corridor_2d.cfg", CORRIDOR_2D_CFG)
+    write_cfg("corridor_kcar.cfg", CORRIDOR_KCAR_CFG, planners=("kpiece", "rrt", "sst"), time_limit="20.0")
 
 
 if __name__ == "__main__":

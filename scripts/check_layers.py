@@ -18,7 +18,7 @@ LEVELS = [
     ["bvh"],                  # volume trees over any bounding volume
     ["query", "io"],          # collision checkers; problem files and meshes
     ["ompl", "fcl", "render"],  # OMPL adapters; FCL as a checker; pictures and glTF scenes
-    ["planners"],             # OMPL's geometric planners by OMPL.app's names
+    ["planners"],             # OMPL's geometric and control planners by OMPL.app's names
     ["cli"],                  # the hybridcd tool (src/ only)
 ]
 LEVEL = {folder: level for level, folders in enumerate(LEVELS) for folder in folders}

@@ -189,6 +189,11 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     std::vector<CheckerSlot> slots = configurationsOf(cl, checkers);
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
+    if (!cfg.control.empty())
+        throw InputError(cfg.path, cfg.controlLine,
+                         "control = " + cfg.control +
+                             ": `bench` runs geometric planners only; plan this kinodynamic problem with `hybridcd "
+                             "solve` (bench/README.md has its measurements)");
 
     const long long totalRuns = cl.positiveInteger("runs", cfg.benchmark.runCount);
     // Shard I of N does the runs whose index is I modulo N, so shards never overlap and together

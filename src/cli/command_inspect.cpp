@@ -95,7 +95,7 @@ int runInspect(const CommandLine &cl, const CheckerCatalogue &checkers)
     std::cout << "problem: " << cfg.name << " (" << cfg.path << ")\n"
               << "state space: " << (cfg.planar ? "SE2" : "SE3") << '\n';
     if (!cfg.control.empty())
-        std::cout << "control model: " << cfg.control << " (hybridcd plans geometric paths for it)\n";
+        std::cout << "control model: " << cfg.control << " (kinodynamic: `solve` plans it with a control planner)\n";
     describeMesh("robot", cfg.robotMesh, problem.robot);
     describeMesh("environment", cfg.worldMesh, problem.world);
 

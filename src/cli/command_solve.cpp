@@ -8,18 +8,23 @@
 #include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/io/path_file.h"
+#include "hybridcd/ompl/control_problem.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/ompl/retraction_sampler.h"
 #include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_catalogue.h"
 
+#include <ompl/control/PathControl.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
+#include <tuple>
 #include <unistd.h>
 
 namespace hcd::cli
@@ -43,6 +48,97 @@ std::vector<std::pair<std::string, std::string>> parseParams(const std::string &
     }
     return out;
 }
+// "MIN,MAX" propagation steps per control.
+std::pair<unsigned, unsigned> parseControlSteps(const std::string &text)
+{
+    const auto comma = text.find(',');
+    auto whole = [&](const std::string &item) -> unsigned {
+        char *end = nullptr;
+        const unsigned long v = std::strtoul(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || item[0] == '-' || v < 1 || v > 100000)
+            throw UsageError("--control-steps expects MIN,MAX whole numbers from 1 to 100000, got '" + text + "'");
+        return unsigned(v);
+    };
+    if (comma == std::string::npos)
+        throw UsageError("--control-steps expects MIN,MAX, got '" + text + "'");
+    const unsigned lo = whole(text.substr(0, comma)), hi = whole(text.substr(comma + 1));
+    if (lo > hi)
+        throw UsageError("--control-steps: MIN exceeds MAX in '" + text + "'");
+    return {lo, hi};
+}
+
+struct ControlRun
+{
+    double timeLimit;
+    std::string outPath;
+    std::string plannerName;
+    std::vector<std::pair<std::string, std::string>> params;
+    ControlSettings settings;
+};
+
+// A kinodynamic problem: OMPL's control planners on OMPL.app's vehicle model.
+int solveControl(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker, double buildSeconds,
+                 const ControlRun &run)
+{
+    const std::string checkerName = checker->name();
+    ControlProblem planning = makeControlProblem(problem, std::move(checker), run.settings);
+    requireCollisionFreeStartAndGoal(problem, planning.poseSpace, *planning.poseValidity);
+    PlannerRequest request{run.plannerName, "", run.params};
+    planning.setup->setPlanner(makeControlPlanner(request, planning.setup->getSpaceInformation()));
+    planning.setup->setup();
+
+    const ompl::base::PlannerStatus status = planning.setup->solve(run.timeLimit);
+    const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
+    const double solveSeconds = planning.setup->getLastPlanComputationTime();
+    const std::uint64_t checks = planning.poseValidity->checkCount();
+    const double checkSeconds = planning.poseValidity->checkSeconds();
+    std::cout << "problem: " << problem.config.name << " (" << vehicleModelName(planning.model) << ", "
+              << (problem.config.planar ? "SE2" : "SE3") << " pose)\n"
+              << "checker: " << checkerName << " (built in " << buildSeconds * 1e3 << " ms)\n"
+              << "planner: " << planning.setup->getPlanner()->getName() << " (control)\n"
+              << "motion check: "
+              << (run.settings.motion == MotionCheck::Continuous ? "continuous (every integration step)"
+                                                                 : "discrete (propagation steps)")
+              << '\n'
+              << "propagation step: " << run.settings.propagationStep << " s, controls of "
+              << run.settings.minControlSteps << " to " << run.settings.maxControlSteps << " steps\n"
+              << "goal threshold: " << run.settings.goalThreshold << '\n'
+              << "solved: " << (solved ? "yes" : "no") << " (" << status.asString() << ")\n"
+              << "solve time: " << solveSeconds << " s\n"
+              << "collision checks: " << checks << '\n'
+              << "collision checking time: " << checkSeconds << " s\n";
+    if (!solved)
+        return kNotSolved;
+
+    ompl::control::PathControl &path = planning.setup->getSolutionPath();
+    std::cout << "controls: " << path.getControlCount() << '\n' << "duration: " << path.length() << " s\n";
+    // One row per propagation step, as OMPL.app writes control paths (PathControl::printAsMatrix):
+    // the state, then the control applied from it and for how long; the last row has zero controls.
+    path.interpolate();
+    const auto space = planning.setup->getStateSpace();
+    const unsigned controlDims = planning.setup->getControlSpace()->getDimension();
+    std::vector<std::vector<double>> rows;
+    for (std::size_t i = 0; i < path.getStateCount(); ++i)
+    {
+        std::vector<double> row;
+        space->copyToReals(row, path.getState(i));
+        for (unsigned k = 0; k < controlDims; ++k)
+            row.push_back(i < path.getControlCount()
+                              ? path.getControl(i)->as<ompl::control::RealVectorControlSpace::ControlType>()->values[k]
+                              : 0.0);
+        row.push_back(i < path.getControlCount() ? path.getControlDuration(i) : 0.0);
+        rows.push_back(std::move(row));
+    }
+    AtomicFile out(run.outPath);
+    out.stream() << "# " << vehicleModelName(planning.model) << " path: " << space->getDimension()
+                 << " state values (the pose first, as in OMPL.app's .path), " << controlDims
+                 << " control values, duration in s\n";
+    writePoses(out.stream(), rows);
+    out.commit();
+    std::cout << "states written (one per propagation step): " << rows.size() << '\n'
+              << "path written to: " << run.outPath << '\n';
+    return kSuccess;
+}
 }  // namespace
 
 void declareSolve(CommandLine &cl)
@@ -56,7 +152,10 @@ void declareSolve(CommandLine &cl)
         .option("motion", "continuous|discrete", "how motions are checked (default continuous)")
         .option("sampler", "uniform|retraction",
                 "state sampling (default uniform); retraction pushes colliding samples out onto the "
-                "obstacles' surfaces, where narrow passages are")
+                "obstacles' surfaces")
+        .option("goal-threshold", "D", "kinodynamic problems: distance to the goal state that counts (default 1)")
+        .option("propagation-step", "SECONDS", "kinodynamic problems: the propagation step (default 0.2)")
+        .option("control-steps", "MIN,MAX", "kinodynamic problems: steps each control lasts (default 1,20)")
         .flag("verbose", "OMPL's progress messages")
         .flag("quiet", "no progress on stderr (default: a line a second, or a bar on a terminal)");
     addCheckerOptions(cl, false);
@@ -64,6 +163,9 @@ void declareSolve(CommandLine &cl)
 Examples:
   hybridcd solve problems/window_3d.cfg --seed 1 --time 30
   hybridcd solve problems/corridor_2d.cfg --planner kpiece --param range=5 --out corridor.path
+
+A problem with `control = kinematic_car|dynamic_car|blimp|quadrotor` is planned with OMPL's control
+planners (kpiece (default), rrt, sst, est, pdst) on OMPL.app's vehicle model.
 )");
 }
 
@@ -90,6 +192,14 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     if (sampling != "uniform" && sampling != "retraction")
         throw UsageError("option --sampler needs uniform or retraction, got '" + sampling + "'");
 
+    ControlSettings controlSettings;
+    controlSettings.motion = motion;
+    controlSettings.goalThreshold = cl.positiveNumber("goal-threshold", controlSettings.goalThreshold);
+    controlSettings.propagationStep = cl.positiveNumber("propagation-step", controlSettings.propagationStep);
+    if (cl.has("control-steps"))
+        std::tie(controlSettings.minControlSteps, controlSettings.maxControlSteps) =
+            parseControlSteps(cl.text("control-steps", ""));
+
     const LoadedProblem problem = loadProblemFor(cl);
     // The default name cannot be OMPL.app's NAME.path, which its problem folders ship as samples.
     const std::string outPath = cl.text("out", problem.config.name + ".solution.path");
@@ -100,6 +210,15 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     std::shared_ptr<const CollisionChecker> checker = checkers.make(checkerName, problem.scene, checkerOptions);
     const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
 
+    if (!problem.config.control.empty() && cl.has("sampler"))
+        throw UsageError("option --sampler is for geometric problems; " + problem.config.name +
+                         " is kinodynamic (control = " + problem.config.control + ")");
+    if (!problem.config.control.empty())
+        return solveControl(problem, checker, buildSeconds,
+                            ControlRun{timeLimit, outPath, cl.text("planner", "kpiece"), params, controlSettings});
+    for (const char *option : {"goal-threshold", "propagation-step", "control-steps"})
+        if (cl.has(option))
+            throw UsageError(std::string("--") + option + " is for kinodynamic problems (a .cfg with control = ...)");
     PlanningProblem planning = makePlanningProblem(problem, checker, motion);
     requireCollisionFreeStartAndGoal(problem, planning);
     if (sampling == "retraction")

@@ -61,25 +61,30 @@ void requireStartAndGoalInVolume(const ProblemConfig &config)
 
 void requireCollisionFreeStartAndGoal(const LoadedProblem &problem, const PlanningProblem &planning)
 {
+    requireCollisionFreeStartAndGoal(problem, planning.setup->getSpaceInformation(), *planning.validity);
+}
+
+void requireCollisionFreeStartAndGoal(const LoadedProblem &problem, const ompl::base::SpaceInformationPtr &si,
+                                      StateValidityChecker &validity)
+{
     const ProblemConfig &config = problem.config;
-    const auto si = planning.setup->getSpaceInformation();
     ompl::base::State *state = si->allocState();
     for (const bool isStart : {true, false})
     {
         const ConfigPose &pose = isStart ? config.start : config.goal;
         // The same state the planner is given, so the verdict is the one it would reach.
         configPoseToState(pose, config.planar, state);
-        if (!planning.validity->collisionFree(state))
+        if (!validity.collisionFree(state))
         {
             si->freeState(state);
             const std::string which = isStart ? "start" : "goal";
             throw InputError(config.path, isStart ? config.startLine : config.goalLine,
                              "the " + which + " " + formatPose(pose, config.planar) +
-                                 " collides with the environment (checker '" + planning.validity->checker().name() +
+                                 " collides with the environment (checker '" + validity.checker().name() +
                                  "'); no path can " + (isStart ? "leave" : "reach") + " it");
         }
     }
     si->freeState(state);
-    planning.validity->resetCounters();
+    validity.resetCounters();
 }
 }  // namespace hcd::cli

@@ -28,4 +28,8 @@ void requireStartAndGoalInVolume(const ProblemConfig &config);
 /// the environment under `planning`'s checker: no planner could succeed, and it would only find
 /// out when its time is up.
 void requireCollisionFreeStartAndGoal(const LoadedProblem &problem, const PlanningProblem &planning);
+
+/// The same for the SE2/SE3 states of `si` (a control problem's pose space) under `validity`.
+void requireCollisionFreeStartAndGoal(const LoadedProblem &problem, const ompl::base::SpaceInformationPtr &si,
+                                      StateValidityChecker &validity);
 }  // namespace hcd::cli

@@ -244,7 +244,22 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
     cfg.name = get("name") ? get("name")->value : std::filesystem::path(path).stem().string();
     cfg.planar = get("start.z") == nullptr;
     if (const Entry *c = get("control"))
-        cfg.control = c->value;
+    {
+        // OMPL.app plans an unknown model geometrically without a word; here it is an error.
+        const std::string model = lower(c->value);
+        const bool planarModel = model == "kinematic_car" || model == "dynamic_car";
+        if (!planarModel && model != "blimp" && model != "quadrotor")
+            throw InputError(path, c->line,
+                             "unknown control model '" + c->value +
+                                 "'; expected kinematic_car, dynamic_car (planar), blimp or quadrotor (3D)");
+        if (planarModel != cfg.planar)
+            throw InputError(path, c->line,
+                             "control = " + model + " is a " + (planarModel ? "planar" : "3D") +
+                                 " vehicle, but this is a " +
+                                 (cfg.planar ? "planar problem (no start.z)" : "3D problem"));
+        cfg.control = model;
+        cfg.controlLine = c->line;
+    }
 
     auto readPose = [&](const std::string &prefix, ConfigPose &pose) {
         (prefix == "start" ? cfg.startLine : cfg.goalLine) = require(prefix + ".x").line;

@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/planners/planner_catalogue.h"
 
+#include <ompl/control/planners/est/EST.h>
+#include <ompl/control/planners/kpiece/KPIECE1.h>
+#include <ompl/control/planners/pdst/PDST.h>
+#include <ompl/control/planners/rrt/RRT.h>
+#include <ompl/control/planners/sst/SST.h>
 #include <ompl/geometric/planners/AnytimePathShortening.h>
 #include <ompl/geometric/planners/cforest/CForest.h>
 #include <ompl/geometric/planners/est/BiEST.h>
@@ -147,7 +152,83 @@ std::string join(const std::vector<std::string> &items)
     return out;
 }
 
+// OMPL's control planners by OMPL.app's names. Left out: SyclopRRT and SyclopEST need a grid
+// decomposition of the workspace.
+using ControlFactory = std::function<ompl::base::PlannerPtr(const ompl::control::SpaceInformationPtr &)>;
+
+template <typename T>
+ControlFactory makeControl()
+{
+    return
+        [](const ompl::control::SpaceInformationPtr &si) -> ompl::base::PlannerPtr { return std::make_shared<T>(si); };
+}
+
+const std::map<std::string, ControlFactory> &controlCatalogue()
+{
+    namespace oc = ompl::control;
+    static const std::map<std::string, ControlFactory> table = {
+        {"est", makeControl<oc::EST>()}, {"kpiece", makeControl<oc::KPIECE1>()}, {"pdst", makeControl<oc::PDST>()},
+        {"rrt", makeControl<oc::RRT>()}, {"sst", makeControl<oc::SST>()},
+    };
+    return table;
+}
+
+// The display name and every parameter of `request`, through OMPL's ParamSet.
+void applyRequest(const PlannerRequest &request, const std::string &type, ompl::base::Planner &planner)
+{
+    if (!request.displayName.empty())
+        planner.setName(request.displayName);
+
+    for (const auto &[key, value] : request.parameters)
+    {
+        // Check first so an unknown name gets a helpful list instead of OMPL's bare log line.
+        if (!planner.params().hasParam(key))
+        {
+            std::vector<std::string> known;
+            planner.params().getParamNames(known);
+            throw std::invalid_argument("planner '" + type + "' (" + planner.getName() + ") has no parameter '" + key +
+                                        "'; valid parameters: " + (known.empty() ? "(none)" : join(known)));
+        }
+        const std::string rejected =
+            "planner '" + type + "': invalid value '" + value + "' for parameter '" + key + "'";
+        bool accepted = false;
+        try
+        {
+            accepted = planner.params().setParam(key, value);
+        }
+        catch (const std::exception &e)
+        {
+            // OMPL 1.5 only turns std::invalid_argument into "false"; a malformed real
+            // ("Failed converting string to real number"), an out-of-range integer or a
+            // setter's own ompl::Exception escapes as some other exception.
+            throw std::invalid_argument(rejected + ": " + e.what());
+        }
+        if (!accepted)
+            throw std::invalid_argument(rejected);
+    }
+}
 }  // namespace
+
+std::vector<std::string> controlPlannerNames()
+{
+    std::vector<std::string> names;
+    for (const auto &entry : controlCatalogue())
+        names.push_back(entry.first);
+    return names;
+}
+
+ompl::base::PlannerPtr makeControlPlanner(const PlannerRequest &request, const ompl::control::SpaceInformationPtr &si)
+{
+    const std::string type = toLower(trim(request.type));
+    const auto it = controlCatalogue().find(type);
+    if (it == controlCatalogue().end())
+        throw std::invalid_argument(
+            "unknown control planner '" + request.type +
+            "' for a kinodynamic problem; valid control planners: " + join(controlPlannerNames()));
+    ompl::base::PlannerPtr planner = it->second(si);
+    applyRequest(request, type, *planner);
+    return planner;
+}
 
 std::vector<std::string> plannerNames()
 {
@@ -167,36 +248,7 @@ ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::ba
                                     "'; valid types: " + join(plannerNames()));
 
     ompl::base::PlannerPtr planner = it->second(si);
-    if (!request.displayName.empty())
-        planner->setName(request.displayName);
-
-    for (const auto &[key, value] : request.parameters)
-    {
-        // Check first so an unknown name gets a helpful list instead of OMPL's bare log line.
-        if (!planner->params().hasParam(key))
-        {
-            std::vector<std::string> known;
-            planner->params().getParamNames(known);
-            throw std::invalid_argument("planner '" + type + "' (" + planner->getName() + ") has no parameter '" + key +
-                                        "'; valid parameters: " + (known.empty() ? "(none)" : join(known)));
-        }
-        const std::string rejected =
-            "planner '" + type + "': invalid value '" + value + "' for parameter '" + key + "'";
-        bool accepted = false;
-        try
-        {
-            accepted = planner->params().setParam(key, value);
-        }
-        catch (const std::exception &e)
-        {
-            // OMPL 1.5 only turns std::invalid_argument into "false"; a malformed real
-            // ("Failed converting string to real number"), an out-of-range integer or a
-            // setter's own ompl::Exception escapes as some other exception.
-            throw std::invalid_argument(rejected + ": " + e.what());
-        }
-        if (!accepted)
-            throw std::invalid_argument(rejected);
-    }
+    applyRequest(request, type, *planner);
     return planner;
 }
 

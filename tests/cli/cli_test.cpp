@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -46,6 +47,70 @@ TEST(Cli, SolveWritesAValidPath)
         EXPECT_FALSE(reference->collides(transformOfRow(p.values.data(), true)));
     EXPECT_NEAR(poses.front().values[0], problem.config.start.x, 1e-9);
     EXPECT_NEAR(poses.back().values[0], problem.config.goal.x, 1e-9);
+}
+
+TEST(Cli, SolveRunsAControlPlannerOnAKinodynamicProblem)
+{
+    const std::string cfg = test::sourcePath("problems/corridor_kcar.cfg");
+    const std::string out = test::writeTempFile("kcar.path", "");
+    const CliRun r = run("solve " + cfg + " --planner rrt --seed 2 --time 60 --out " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char *field : {"(kinematic_car, SE2 pose)", "planner: RRT (control)", "solved: yes",
+                              "propagation step: 0.2 s, controls of 1 to 20 steps", "states written"})
+        EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
+    // Rows: x y theta, speed, steering angle, duration; poses readable as OMPL.app .path poses.
+    const LoadedProblem problem = loadProblem(cfg);
+    const auto poses = readPoses(out, true);
+    ASSERT_GE(poses.size(), 2u);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const PoseRecord &p : poses)
+        EXPECT_FALSE(reference->collides(transformOfRow(p.values.data(), true)));
+    EXPECT_NEAR(poses.front().values[0], problem.config.start.x, 1e-9);
+    EXPECT_LT(
+        std::hypot(poses.back().values[0] - problem.config.goal.x, poses.back().values[1] - problem.config.goal.y),
+        1.0);
+    std::ifstream in(out);
+    std::string header, row;
+    std::getline(in, header);
+    EXPECT_EQ(header.rfind("# kinematic_car path:", 0), 0u) << header;
+    std::getline(in, row);
+    std::istringstream columns(row);
+    double v = 0.0;
+    std::vector<double> values;
+    while (columns >> v)
+        values.push_back(v);
+    ASSERT_EQ(values.size(), 6u) << row;
+    EXPECT_LE(std::abs(values[3]), 5.0);
+    EXPECT_NEAR(std::fmod(values[5] + 1e-9, 0.2), 0.0, 1e-6) << "a whole number of propagation steps";
+}
+
+TEST(Cli, KinodynamicProblemsRefuseWhatCannotBeDone)
+{
+    const std::string robot = test::sourcePath("problems/corridor_2d_robot.obj");
+    const std::string world = test::sourcePath("problems/corridor_2d_env.obj");
+    const std::string hover = test::writeTempFile(
+        "hover.cfg", "[problem]\nrobot = " + robot + "\nworld = " + world +
+                         "\ncontrol = hovercraft\nstart.x = -40\nstart.y = -20\ngoal.x = -12\ngoal.y = -20\n");
+    const std::string kcar = test::sourcePath("problems/corridor_kcar.cfg");
+    struct Case
+    {
+        std::string args, expected;
+    };
+    const Case cases[] = {
+        {"solve " + hover + " --out /dev/null", "hover.cfg:4: unknown control model 'hovercraft'"},
+        {"solve " + kcar + " --planner rrtconnect --out /dev/null",
+         "valid control planners: est, kpiece, pdst, rrt, sst"},
+        {"bench " + kcar + " --out /dev/null", "corridor_kcar.cfg:5: control = kinematic_car: `bench` runs geometric"},
+        {"solve " + problem3d() + " --goal-threshold 2 --out /dev/null",
+         "--goal-threshold is for kinodynamic problems"},
+        {"solve " + kcar + " --control-steps 5,2 --out /dev/null", "MIN exceeds MAX"},
+    };
+    for (const Case &c : cases)
+    {
+        const CliRun r = run(c.args);
+        EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
+    }
 }
 
 TEST(Cli, CheckPrintsOneVerdictPerPose)

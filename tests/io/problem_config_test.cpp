@@ -136,6 +136,26 @@ TEST(ProblemConfig, ErrorsNameFileAndLine)
     EXPECT_EQ(errorOf(kMinimal), "");
 }
 
+TEST(ProblemConfig, ControlModelsAreKnownAndMatchTheDimension)
+{
+    const std::string planar = "[problem]\nrobot = r.obj\nworld = w.obj\nstart.x = 1\nstart.y = 2\n"
+                               "goal.x = 4\ngoal.y = 5\n";
+    const std::string path = test::writeTempFile("car.cfg", planar + "control = Kinematic_Car\n");
+    const ProblemConfig cfg = readProblemConfig(path);
+    EXPECT_EQ(cfg.control, "kinematic_car");
+    EXPECT_EQ(cfg.controlLine, 8);
+    EXPECT_NE(errorOf(planar + "control = hovercraft\n").find("bad.cfg:8: unknown control model 'hovercraft'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(planar + "control = quadrotor\n").find("bad.cfg:8: control = quadrotor is a 3D vehicle"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(kMinimal) + "control = dynamic_car\n")
+                  .find("bad.cfg:10: control = dynamic_car is a "
+                        "planar vehicle"),
+              std::string::npos);
+    EXPECT_EQ(errorOf(std::string(kMinimal) + "control = blimp\n"), "");
+    EXPECT_EQ(errorOf(planar + "control = dynamic_car\n"), "");
+}
+
 TEST(ProblemConfig, TextAndFileReadersAgree)
 {
     const std::string path = test::writeTempFile("text.cfg", std::string(kMinimal) + "start.theta = 1e-310\n");

@@ -38,7 +38,10 @@ struct ProblemConfig
     int startLine = 0;  ///< lines of start.x and goal.x, for messages about the start or goal
     int goalLine = 0;
     bool planar = false;  ///< SE2 when the start has no z, as OMPL.app decides
-    std::string control;  ///< e.g. "dynamic_car" (kinodynamic problems; planned geometrically here)
+    /// The vehicle of a kinodynamic problem: kinematic_car or dynamic_car (planar), blimp or
+    /// quadrotor (3D); empty for a geometric problem. Any other value is an InputError.
+    std::string control;
+    int controlLine = 0;
     ConfigPose start, goal;
     std::optional<std::pair<double, double>> volumeX, volumeY, volumeZ;  ///< (min, max) when given
     std::string objective;  ///< "length", "max min clearance", "mechanical work" or empty
@@ -54,7 +57,8 @@ struct ProblemConfig
 /// Parses `path`. Throws InputError("FILE:LINE: ...") for unreadable files, folders, binary data,
 /// malformed lines, bad numbers, a key set twice in a section (or a planner setting given twice
 /// for the same planner), parameters of a planner that was never declared, non-positive benchmark
-/// limits, a rotation axis of zero length, and missing required keys. Unknown keys are not errors:
+/// limits, a rotation axis of zero length, an unknown `control` model or one that does not match
+/// the problem's dimension, and missing required keys. Unknown keys are not errors:
 /// each adds a line to ProblemConfig::warnings.
 ProblemConfig readProblemConfig(const std::string &path);
 

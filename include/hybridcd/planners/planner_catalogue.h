@@ -4,6 +4,7 @@
 
 #include <ompl/base/Planner.h>
 #include <ompl/base/SpaceInformation.h>
+#include <ompl/control/SpaceInformation.h>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,5 +21,13 @@ std::vector<std::string> plannerNames();
 /// (from params().getParamNames()); for a value OMPL rejects (setParam returns false), it names the parameter and the
 /// value.
 ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si);
+
+/// Lowercase names of the control planners (for kinodynamic problems): est, kpiece, pdst, rrt, sst.
+std::vector<std::string> controlPlannerNames();
+
+/// Builds one of OMPL's control planners (ompl::control::KPIECE1, RRT, SST, EST, PDST) by
+/// OMPL.app's name, with the request's name and parameters applied as makePlanner does. Throws
+/// std::invalid_argument for an unknown name (listing the valid ones) or a bad parameter.
+ompl::base::PlannerPtr makeControlPlanner(const PlannerRequest &request, const ompl::control::SpaceInformationPtr &si);
 
 }  // namespace hcd
