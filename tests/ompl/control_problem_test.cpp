@@ -414,6 +414,11 @@ TEST(ControlProblem, RrtSolvesTheCorridorAndThePathHolds)
 
 TEST(ControlProblem, OmplAppMazeKinematicCarSolves)
 {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    // Planning is bounded by time, and under sanitizers RRT gets a few percent of its iterations
+    // in that time; the tests on the project's problems above cover the same code there.
+    GTEST_SKIP() << "planning OMPL.app's maze within a time limit is a Release-build test";
+#endif
     const auto cfg = test::omplappProblem("2D/Maze_kcar.cfg");
     if (!cfg)
         HYBRIDCD_SKIP_OR_FAIL_IN_CI("OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES");
