@@ -47,6 +47,7 @@ int main(int argc, char **argv)
         .option("checker", "NAME[,NAME...]", "the checkers (default obb,fcl)")
         .flag("no-reference", "skip the brute-force reference (no disagreement count)")
         .flag("distance", "time distance() (FCL: fcl::distance) instead of collision checks")
+        .flag("no-grid", "hybridcd checkers without their clearance grid first layer")
         .footer("\nExample:\n  hybridcd_bench_checkers --states 5000 --checker obb,lp,fcl problems/window_3d.cfg\n\n" +
                 cli::checkerHelp(checkers));
     return bench::runProgram(app, cl, argc, argv, [&] { return run(cl, checkers); });
@@ -92,7 +93,9 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
         for (const std::string &name : names)
         {
             const auto buildStart = std::chrono::steady_clock::now();
-            const auto checker = checkers.make(name, problem.scene);
+            CheckerOptions options;
+            options.clearanceGrid = !cl.has("no-grid");
+            const auto checker = checkers.make(name, problem.scene, options);
             const double buildMs =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
             std::vector<double> ns(poses.size());

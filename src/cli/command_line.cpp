@@ -267,6 +267,7 @@ void addCheckerOptions(CommandLine &cl, bool several)
               several ? "the checkers to use, comma-separated (default obb; listed below)"
                       : "the collision checker (default obb; listed below)")
         .flag("surface-only", "treat meshes as surfaces only, as FCL does (default: closed components are solids)")
+        .flag("no-grid", "no clearance grid first (default: a grid of the environment proves what it can first)")
         .option("mode", "exact|approximate", "exact (default), or approximate with --tolerance (the lp checker)")
         .option("tolerance", "T", "approximate mode: contact may be reported up to distance T apart (positive)")
         .option("max-triangles", "N", "refuse meshes of more than N triangles (default 2000000)");
@@ -276,6 +277,7 @@ CheckerOptions checkerOptionsOf(const CommandLine &cl)
 {
     CheckerOptions options;
     options.semantics = cl.has("surface-only") ? ContactSemantics::SurfaceOnly : ContactSemantics::Solid;
+    options.clearanceGrid = !cl.has("no-grid");
     const std::string mode = cl.text("mode", "exact");
     if (mode == "approximate")
     {

@@ -2,6 +2,7 @@
 #include "hybridcd/query/checker_catalogue.h"
 
 #include "hybridcd/query/brute_force_checker.h"
+#include "hybridcd/query/grid_first_checker.h"
 #include "hybridcd/query/volume_tree_checker.h"
 
 #include <stdexcept>
@@ -44,7 +45,8 @@ CheckerCatalogue CheckerCatalogue::builtIn()
     c.add(treeEntry<KDop<18>>("kdop18", "18-DOP trees (axes and edge diagonals), exact triangle tests at the leaves"));
     c.add(treeEntry<KDop<26>>("kdop26", "26-DOP trees (all 13 directions), exact triangle tests at the leaves"));
     c.add({"bruteforce", "every triangle pair, no hierarchy (the slow reference)",
-           [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<BruteForceChecker>(s); }});
+           [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<BruteForceChecker>(s); },
+           false, false, true});
     c.add({"lp", "OBB trees over convex pieces tested by linear programming; exact, or approximate with a tolerance",
            [](const CollisionScene &s, const CheckerOptions &o) {
                PieceStage stage;
@@ -103,9 +105,14 @@ std::unique_ptr<CollisionChecker> CheckerCatalogue::make(const std::string &name
 {
     check(name, options);
     const CheckerEntry &entry = *find(name);
-    if (options.semantics == ContactSemantics::SurfaceOnly || entry.keepsOwnSemantics)
+    if (entry.keepsOwnSemantics)
         return entry.factory(scene, options);
-    return std::make_unique<SolidSemanticsChecker>(entry.factory(scene, options), scene);
+    std::unique_ptr<CollisionChecker> exact = entry.factory(scene, options);
+    if (options.semantics == ContactSemantics::Solid)
+        exact = std::make_unique<SolidSemanticsChecker>(std::move(exact), scene);
+    if (!options.clearanceGrid || entry.reference || options.approximateTolerance)
+        return exact;
+    return std::make_unique<GridFirstChecker>(std::move(exact), scene, options.semantics);
 }
 
 std::unique_ptr<CollisionChecker> makeChecker(const std::string &name, const CollisionScene &scene,

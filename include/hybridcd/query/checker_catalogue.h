@@ -22,6 +22,9 @@ struct CheckerOptions
     /// Unset: exact mode. Set to T >= 0: approximate mode, where a checker may report contact when
     /// the meshes are up to T apart (never misses one). Only entries with `approximate` accept it.
     std::optional<double> approximateTolerance;
+    /// A clearance grid of the environment and a sphere cover of the robot answer first where they
+    /// can prove the answer (GridFirstChecker); entries marked `reference` never get it.
+    bool clearanceGrid = true;
 };
 
 /// Makes one checker over a scene; the options were already checked against the entry.
@@ -39,6 +42,8 @@ struct CheckerEntry
     bool keepsOwnSemantics = false;
     /// Accepts CheckerOptions::approximateTolerance; other entries refuse it.
     bool approximate = false;
+    /// A reference the others are tested against (bruteforce): built as it is, no grid first.
+    bool reference = false;
 };
 
 /// An ordered list of named checkers. Applications start from builtIn() and add the optional

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A uniform grid over the environment that bounds, per cell, how far the surface is (from below),
+// and says on which side of every closed solid the cell lies: a cheap first layer that proves most
+// free poses free without touching a hierarchy (the seed's occupancy grids, §3.1, made exact).
+#pragma once
+
+#include "hybridcd/geometry/solid_components.h"
+#include "hybridcd/geometry/triangle_mesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace hcd
+{
+struct ClearanceGridSettings
+{
+    /// Upper bound on the number of cells (one byte each, twice with markers).
+    std::size_t maxCells = std::size_t(1) << 19;
+    /// The grid covers the mesh's bounding box grown by this much on every side (world units).
+    double margin = 0.0;
+};
+
+/// What the grid knows about one point (world frame).
+struct ClearanceSample
+{
+    /// Lower bound on the distance from the point to any triangle of the mesh (0 when unknown).
+    double clearance = 0.0;
+    /// The point is outside every closed component (proved); false when unknown.
+    bool outside = false;
+    /// The point is inside some closed component (proved), at least `clearance` from its surface:
+    /// it lies in a free cell, and no triangle comes within the rounding slack of a free cell, far
+    /// more than the rounding in the point or its cell index.
+    bool inside = false;
+    /// Lower bound on the distance from the point to the nearest marker point.
+    double markerClearance = 0.0;
+};
+
+/// Cells are closed cubes of side `cellSize()`. A cell is occupied when a triangle may touch it
+/// (bounding box and plane tests with an outward margin, so never missed). For a free cell, the
+/// squared distance in cells to the nearest occupied cell centre (exact Euclidean distance
+/// transform on integers) gives the bound (d - sqrt(3)) * cellSize on the distance from any point
+/// of the cell to the surface. Face-adjacent free cells are on the same side of every surface, so
+/// one exact point-in-solid test per connected free region labels all its cells.
+/// Marker points (e.g. one vertex per component) get the same distance bound in a second channel.
+/// Immutable after construction; safe to query from many threads.
+class ClearanceGrid
+{
+public:
+    ClearanceGrid() = default;
+    /// `solids`, when given, is the point-in-solid query of `mesh` (labels inside/outside);
+    /// without it no cell is labelled and `outside`/`inside` stay false.
+    ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids, const std::vector<Vec3> &markers,
+                  ClearanceGridSettings settings = {});
+
+    bool empty() const { return surfaceCode_.empty(); }
+    ClearanceSample at(const Vec3 &p) const;
+
+    double cellSize() const { return cellSize_; }
+    std::array<int, 3> cells() const { return {nx_, ny_, nz_}; }
+    std::size_t occupiedCells() const { return occupied_; }
+    std::size_t memoryBytes() const { return surfaceCode_.size() + markerSteps_.size(); }
+    double buildSeconds() const { return buildSeconds_; }
+
+private:
+    Vec3 origin_ = Vec3::Zero();
+    Vec3 meshMin_ = Vec3::Zero(), meshMax_ = Vec3::Zero();
+    double cellSize_ = 0.0, inverseCellSize_ = 0.0;
+    /// Slack for rounding in the cell index of a query point (world units).
+    double roundingSlack_ = 0.0;
+    int nx_ = 0, ny_ = 0, nz_ = 0;
+    bool labelled_ = false;
+    bool hasMarkers_ = false;
+    /// 0: occupied. 1..127: outside every solid, clearance >= (code - 1) cells.
+    /// 128..255: inside a solid, clearance >= (code - 128) cells.
+    std::vector<std::uint8_t> surfaceCode_;
+    /// Distance to the nearest marker, >= steps cells (saturating at 255).
+    std::vector<std::uint8_t> markerSteps_;
+    std::size_t occupied_ = 0;
+    double buildSeconds_ = 0.0;
+};
+}  // namespace hcd

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Checker: a clearance grid of the environment and a sphere cover of the robot first, the wrapped
+// exact checker only when they cannot decide.
+#pragma once
+
+#include "hybridcd/bv/sphere_cover.h"
+#include "hybridcd/bvh/clearance_grid.h"
+#include "hybridcd/query/collision_checker.h"
+#include "hybridcd/query/solid_semantics_checker.h"
+
+#include <memory>
+
+namespace hcd
+{
+struct GridFirstSettings
+{
+    std::size_t robotSpheres = 16;  ///< leaves of the robot's cover tree (at most 32)
+    std::size_t maxCells = std::size_t(1) << 19;  ///< environment grid cells (1 byte each, 2 with solids)
+};
+
+/// Two proofs before the exact checker:
+/// - free: a cut of the robot's cover tree (root first, children of a sphere that fails) lies in grid cells whose clearance exceeds its radius (so no
+///   robot triangle touches the environment) and, with solid semantics, on the outside of every
+///   closed environment solid; for a closed robot, no environment component's first vertex lies
+///   within the robot's reach of its origin (so none is inside the robot). Then the robot is free.
+/// - colliding (solid semantics only): a robot vertex lies in a free grid cell inside a closed
+///   environment solid, at least one cell from its surface.
+/// Everything else goes to the wrapped checker, which sets the answer, so answers are the wrapped
+/// checker's whatever the grid says (tested against bruteforce). Proximity queries use the same
+/// proof with each sphere grown by the slack; distance and contacts go straight to the wrapped one.
+class GridFirstChecker final : public CollisionChecker
+{
+public:
+    /// `exact` answers with `semantics`; the grid is built over `scene.environment`.
+    GridFirstChecker(std::unique_ptr<CollisionChecker> exact, const CollisionScene &scene,
+                     ContactSemantics semantics, GridFirstSettings settings = {});
+
+    std::string name() const override { return exact_->name(); }
+    std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
+    std::optional<LevelVolumes> levelVolumes(int level) const override { return exact_->levelVolumes(level); }
+
+    const ClearanceGrid &grid() const { return grid_; }
+    const std::vector<CoverSphere> &robotCover() const { return cover_; }
+
+    /// The grid's own verdict: true proves free, false proves nothing (also for `collidingByGrid`).
+    bool freeByGrid(const RigidTransform &worldFromRobot, double translationSlack = 0.0,
+                    double radialSlack = 0.0) const;
+    bool collidingByGrid(const RigidTransform &worldFromRobot) const;
+
+private:
+    bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override
+    {
+        return exact_->distance(worldFromRobot, context);
+    }
+    bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
+    bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                               double robotRadius, QueryContext &context) const override;
+    std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
+                                        QueryContext &context) const override
+    {
+        return exact_->contacts(worldFromRobot, limit, context);
+    }
+
+    std::unique_ptr<CollisionChecker> exact_;
+    bool solid_ = true;
+    bool robotHasSolids_ = false;
+    bool environmentHasSolids_ = false;
+    double robotReach_ = 0.0;  ///< max |vertex| of the robot (robot frame)
+    std::vector<CoverSphere> cover_;
+    ClearanceGrid grid_;
+};
+}  // namespace hcd

@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/query/grid_first_checker.h"
+
+#include <algorithm>
+
+namespace hcd
+{
+namespace
+{
+std::vector<Vec3> firstVertexOfEachComponent(const SolidQuery &solids)
+{
+    std::vector<Vec3> out;
+    for (const MeshComponent &c : solids.components())
+        if (!c.triangles.empty())
+            out.push_back(solids.mesh().corner(c.triangles.front(), 0));
+    return out;
+}
+}  // namespace
+
+GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, const CollisionScene &scene,
+                                   ContactSemantics semantics, GridFirstSettings settings)
+    : exact_(std::move(exact)), solid_(semantics == ContactSemantics::Solid)
+{
+    if (!scene.robot || !scene.environment || scene.robot->empty() || scene.environment->empty())
+        return;
+    const DistinctFaceMesh robot = withoutRepeatedFaces(scene.robot);
+    const DistinctFaceMesh environment = withoutRepeatedFaces(scene.environment);
+    cover_ = sphereCover(*robot.mesh, std::clamp<std::size_t>(settings.robotSpheres, 1, 32));
+    robotReach_ = scene.robot->radiusAboutOrigin() * (1.0 + 1e-12);
+    ClearanceGridSettings gridSettings;
+    gridSettings.maxCells = settings.maxCells;
+    // Cells around the mesh as wide as the largest cover sphere: a sphere that reaches the mesh has
+    // its centre in the grid.
+    gridSettings.margin = 0.0;
+    for (const CoverSphere &s : cover_)
+        if (s.firstChild < 0)
+            gridSettings.margin = std::max(gridSettings.margin, s.radius);
+    if (solid_)
+    {
+        const SolidQuery environmentSolids(environment.mesh);
+        const SolidQuery robotSolids(robot.mesh);
+        robotHasSolids_ = robotSolids.closedComponentCount() > 0;
+        environmentHasSolids_ = environmentSolids.closedComponentCount() > 0;
+        grid_ = ClearanceGrid(*environment.mesh, &environmentSolids,
+                              robotHasSolids_ ? firstVertexOfEachComponent(environmentSolids) : std::vector<Vec3>{},
+                              gridSettings);
+    }
+    else
+        grid_ = ClearanceGrid(*environment.mesh, nullptr, {}, gridSettings);
+}
+
+std::vector<HierarchyReport> GridFirstChecker::hierarchies(bool withVolumeRatios) const
+{
+    std::vector<HierarchyReport> reports = exact_->hierarchies(withVolumeRatios);
+    if (!grid_.empty())
+    {
+        HierarchyReport r;
+        const auto cells = grid_.cells();
+        r.label = "environment clearance grid " + std::to_string(cells[0]) + "x" + std::to_string(cells[1]) + "x" +
+                  std::to_string(cells[2]) + " (" + std::to_string(grid_.occupiedCells()) + " occupied), robot " +
+                  std::to_string(cover_.size()) + " spheres";
+        r.nodes = std::size_t(cells[0]) * cells[1] * cells[2];
+        r.depth = 1;
+        r.buildSeconds = grid_.buildSeconds();
+        r.memoryBytes = grid_.memoryBytes() + cover_.size() * sizeof(CoverSphere);
+        reports.push_back(r);
+    }
+    return reports;
+}
+
+bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double translationSlack,
+                                  double radialSlack) const
+{
+    if (grid_.empty() || cover_.empty() || !worldFromRobot.isFinite())
+        return false;
+    // Rounding of R * c + t, relative to the magnitudes involved.
+    const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
+    if (solid_ && robotHasSolids_ && !(grid_.at(worldFromRobot.translation).markerClearance > robotReach_ + rounding))
+        return false;
+    // Depth first over the cover tree: a sphere clear of the surface (and outside every solid)
+    // clears its whole subtree; a leaf that is not proves nothing.
+    int stack[64];
+    int size = 0;
+    stack[size++] = 0;
+    while (size > 0)
+    {
+        const CoverSphere &s = cover_[std::size_t(stack[--size])];
+        const ClearanceSample sample = grid_.at(worldFromRobot.apply(s.center));
+        const double slack = translationSlack + radialSlack * (s.center.norm() + s.radius);
+        if (sample.clearance > s.radius + slack + rounding && (!solid_ || sample.outside))
+            continue;
+        if (s.firstChild < 0)
+            return false;
+        stack[size++] = s.firstChild + 1;
+        stack[size++] = s.firstChild;
+    }
+    return true;
+}
+
+bool GridFirstChecker::collidingByGrid(const RigidTransform &worldFromRobot) const
+{
+    if (!solid_ || !environmentHasSolids_ || grid_.empty())
+        return false;
+    for (const CoverSphere &s : cover_)
+    {
+        if (s.firstChild >= 0)
+            continue;
+        if (grid_.at(worldFromRobot.apply(s.probe)).inside)
+            return true;
+    }
+    return false;
+}
+
+bool GridFirstChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
+{
+    if (freeByGrid(worldFromRobot))
+        return false;
+    if (collidingByGrid(worldFromRobot))
+        return true;
+    return exact_->collides(worldFromRobot, context);
+}
+
+bool GridFirstChecker::doWithinDistance(const RigidTransform &worldFromRobot, double delta,
+                                        QueryContext &context) const
+{
+    if (delta >= 0.0 && freeByGrid(worldFromRobot, delta, 0.0))
+        return false;
+    return exact_->withinDistance(worldFromRobot, delta, context);
+}
+
+bool GridFirstChecker::doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
+                                             double radialSlack, double robotRadius, QueryContext &context) const
+{
+    if (translationSlack >= 0.0 && radialSlack >= 0.0 && freeByGrid(worldFromRobot, translationSlack, radialSlack))
+        return false;
+    return exact_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, context);
+}
+}  // namespace hcd

@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The clearance grid and the grid-first checker against independent references: point-to-mesh
+// distance and point-in-solid by brute force for the grid; bruteforce for every verdict of the
+// checker, and each of its two proofs (free, colliding) checked alone, on OMPL.app problems and on
+// adversarial scenes (containment both ways, touching faces, thin walls, huge and tiny scales).
+#include "support/test_support.h"
+
+#include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/query/brute_force_checker.h"
+#include "hybridcd/query/checker_catalogue.h"
+#include "hybridcd/query/grid_first_checker.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+using namespace hcd;
+
+namespace
+{
+double pointMeshDistance(const TriangleMesh &mesh, const Vec3 &p)
+{
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        best = std::min(best, (closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)) - p).norm());
+    return best;
+}
+
+void append(TriangleMesh &into, const TriangleMesh &part)
+{
+    const auto offset = std::uint32_t(into.vertices.size());
+    into.vertices.insert(into.vertices.end(), part.vertices.begin(), part.vertices.end());
+    for (const auto &t : part.triangles)
+        into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
+/// Closed boxes and a few open, slanted triangles: solids and surfaces, thin walls among them.
+TriangleMesh clutter(test::TestRandom &rng, double scale)
+{
+    std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.02, 0.4);
+    TriangleMesh mesh;
+    for (int i = 0; i < 12; ++i)
+    {
+        const Vec3 c(u(rng), u(rng), u(rng));
+        Vec3 half(size(rng), size(rng), size(rng));
+        if (i % 4 == 0)
+            half[i % 3] = 1e-3;  // a thin wall
+        append(mesh, test::boxMesh(scale * (c - half), scale * (c + half)));
+    }
+    for (int i = 0; i < 6; ++i)
+    {
+        const auto first = std::uint32_t(mesh.vertices.size());
+        const Vec3 c(u(rng), u(rng), u(rng));
+        for (int k = 0; k < 3; ++k)
+            mesh.vertices.push_back(scale * (c + 0.5 * Vec3(u(rng), u(rng), u(rng))));
+        mesh.triangles.push_back({first, first + 1, first + 2});
+    }
+    return mesh;
+}
+
+std::shared_ptr<const TriangleMesh> shared(TriangleMesh mesh) { return std::make_shared<const TriangleMesh>(std::move(mesh)); }
+
+RigidTransform randomPose(test::TestRandom &rng, double extent)
+{
+    std::uniform_real_distribution<double> u(-extent, extent);
+    return {test::randomRotation(rng), Vec3(u(rng), u(rng), u(rng))};
+}
+
+struct Verdicts
+{
+    int freeProved = 0, collidingProved = 0, free = 0, colliding = 0;
+};
+
+/// Every answer of the grid-first checker equals bruteforce's; each proof alone is never wrong.
+Verdicts expectAgreement(const CollisionScene &scene, ContactSemantics semantics, const std::vector<RigidTransform> &poses)
+{
+    CheckerOptions exactOnly;
+    exactOnly.semantics = semantics;
+    exactOnly.clearanceGrid = false;
+    CheckerOptions withGrid = exactOnly;
+    withGrid.clearanceGrid = true;
+    const auto reference = makeChecker("bruteforce", scene, exactOnly);
+    const auto checker = makeChecker("obb", scene, withGrid);
+    const auto *grid = dynamic_cast<const GridFirstChecker *>(checker.get());
+    EXPECT_NE(grid, nullptr) << "obb should come with its grid first";
+    Verdicts v;
+    if (!grid)
+        return v;
+    QueryContext context;
+    for (const RigidTransform &pose : poses)
+    {
+        const bool truth = reference->collides(pose);
+        EXPECT_EQ(checker->collides(pose, context), truth);
+        const bool freeProved = grid->freeByGrid(pose);
+        const bool collidingProved = grid->collidingByGrid(pose);
+        EXPECT_FALSE(freeProved && truth) << "the grid proved a colliding pose free";
+        EXPECT_FALSE(collidingProved && !truth) << "the grid proved a free pose colliding";
+        v.freeProved += freeProved;
+        v.collidingProved += collidingProved;
+        (truth ? v.colliding : v.free) += 1;
+        if (!truth)
+        {
+            // Proximity: "not within delta" only when the distance exceeds delta.
+            const double d = reference->distance(pose);
+            for (double delta : {0.25 * d, 0.9 * d, 1.1 * d})
+                if (!grid->freeByGrid(pose, delta, 0.0))
+                    continue;
+                else
+                    EXPECT_GT(d, delta);
+            EXPECT_EQ(checker->withinDistance(pose, 0.5 * d, context), false);
+            EXPECT_EQ(checker->withinDistance(pose, 1.01 * d, context), true);
+        }
+    }
+    return v;
+}
+}  // namespace
+
+TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
+{
+    test::TestRandom rng(test::seeded(11));
+    for (double scale : {1e-6, 1.0, 1e6})
+    {
+        const auto mesh = shared(clutter(rng, scale));
+        const SolidQuery solids(mesh);
+        ASSERT_GT(solids.closedComponentCount(), 0u);
+        std::vector<Vec3> markers;
+        for (const MeshComponent &c : solids.components())
+            markers.push_back(mesh->corner(c.triangles.front(), 0));
+        ClearanceGridSettings settings;
+        settings.maxCells = 1 << 15;
+        settings.margin = 0.3 * scale;
+        const ClearanceGrid grid(*mesh, &solids, markers, settings);
+        std::uniform_real_distribution<double> u(-1.6, 1.6);
+        int insideSeen = 0, outsideSeen = 0, positiveSeen = 0;
+        for (int i = 0; i < test::cases(3000); ++i)
+        {
+            const Vec3 p = scale * Vec3(u(rng), u(rng), u(rng));
+            const ClearanceSample s = grid.at(p);
+            const double d = pointMeshDistance(*mesh, p);
+            ASSERT_LE(s.clearance, d) << "scale " << scale << " point " << p.transpose();
+            double markerDistance = std::numeric_limits<double>::infinity();
+            for (const Vec3 &m : markers)
+                markerDistance = std::min(markerDistance, (m - p).norm());
+            ASSERT_LE(s.markerClearance, markerDistance);
+            ASSERT_FALSE(s.inside && s.outside);
+            if (s.inside)
+                ASSERT_TRUE(solids.insideAnySolid(p));
+            if (s.outside)
+                ASSERT_FALSE(solids.insideAnySolid(p));
+            insideSeen += s.inside;
+            outsideSeen += s.outside;
+            positiveSeen += s.clearance > 0.0;
+        }
+        // The bounds are not vacuous: the grid decides most points of this scene.
+        EXPECT_GT(insideSeen, 10) << "scale " << scale;
+        EXPECT_GT(outsideSeen, test::cases(3000) / 2) << "scale " << scale;
+        EXPECT_GT(positiveSeen, test::cases(3000) / 2) << "scale " << scale;
+    }
+}
+
+TEST(ClearanceGrid, PointsOnTheSurfaceGetNoClearanceAndNoSide)
+{
+    const auto mesh = shared(test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1)));
+    const SolidQuery solids(mesh);
+    const ClearanceGrid grid(*mesh, &solids, {}, {});
+    for (const Vec3 &p : {Vec3(1, 0.3, -0.2), Vec3(-1, -1, -1), Vec3(0.5, 1, 1), Vec3(0.99999999999, 0, 0)})
+    {
+        const ClearanceSample s = grid.at(p);
+        EXPECT_EQ(s.clearance, 0.0);
+        EXPECT_FALSE(s.outside);
+        EXPECT_FALSE(s.inside);
+    }
+    EXPECT_TRUE(grid.at(Vec3(0, 0, 0)).inside);
+    EXPECT_TRUE(grid.at(Vec3(5, 0, 0)).outside);
+    EXPECT_NEAR(grid.at(Vec3(5, 0, 0)).clearance, 4.0, 1e-6);  // beyond the grid: the box distance
+}
+
+TEST(GridFirst, AgreesWithBruteForceInClutterAtEveryScale)
+{
+    test::TestRandom rng(test::seeded(12));
+    for (double scale : {1e-6, 1.0, 1e6})
+        for (ContactSemantics semantics : {ContactSemantics::Solid, ContactSemantics::SurfaceOnly})
+        {
+            CollisionScene scene;
+            scene.environment = shared(clutter(rng, scale));
+            TriangleMesh robot = test::boxMesh(scale * Vec3(-0.15, -0.04, -0.04), scale * Vec3(0.15, 0.04, 0.04));
+            append(robot, test::boxMesh(scale * Vec3(0.1, -0.1, -0.02), scale * Vec3(0.14, 0.1, 0.02)));
+            scene.robot = shared(robot);
+            std::vector<RigidTransform> poses;
+            for (int i = 0; i < test::cases(600); ++i)
+            {
+                RigidTransform p = randomPose(rng, 1.3);
+                p.translation *= scale;
+                poses.push_back(p);
+            }
+            const Verdicts v = expectAgreement(scene, semantics, poses);
+            EXPECT_GT(v.freeProved, v.free / 4) << "scale " << scale;
+            if (semantics == ContactSemantics::Solid)
+                EXPECT_GT(v.collidingProved, 0) << "scale " << scale;
+            else
+                EXPECT_EQ(v.collidingProved, 0);
+        }
+}
+
+TEST(GridFirst, ContainmentBothWaysAndTouchingFaces)
+{
+    // A closed robot box around a small environment box (the environment inside the robot), the
+    // robot inside a large closed box, and faces that touch exactly.
+    CollisionScene scene;
+    TriangleMesh environment = test::boxMesh(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05));
+    append(environment, test::boxMesh(Vec3(2, -3, -3), Vec3(8, 3, 3)));
+    scene.environment = shared(environment);
+    scene.robot = shared(test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1)));
+    std::vector<RigidTransform> poses;
+    for (double x : {0.0, 0.9, 0.94, 0.95, 0.96, 1.05, 1.0500001, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 9.0000001, 12.0})
+        poses.push_back({Mat3::Identity(), Vec3(x, 0, 0)});
+    test::TestRandom rng(test::seeded(13));
+    for (int i = 0; i < test::cases(300); ++i)
+        poses.push_back(randomPose(rng, 10.0));
+    const Verdicts v = expectAgreement(scene, ContactSemantics::Solid, poses);
+    EXPECT_GT(v.colliding, 0);
+    EXPECT_GT(v.collidingProved, 0);  // the robot at x = 5: its vertices inside the large box
+    EXPECT_GT(v.freeProved, 0);
+}
+
+TEST(GridFirst, AgreesWithBruteForceOnOmplAppProblems)
+{
+    for (const char *name : {"3D/Home.cfg", "3D/Abstract.cfg", "2D/Maze_planar.cfg", "3D/bugtrap.cfg"})
+    {
+        const auto path = test::omplappProblem(name);
+        if (!path)
+            HYBRIDCD_SKIP_OR_FAIL_IN_CI("OMPL.app resources not found; set HYBRIDCD_OMPLAPP_RESOURCES");
+        const LoadedProblem problem = loadProblem(*path);
+        test::TestRandom rng(test::seeded(14));
+        const Verdicts v = expectAgreement(problem.scene, ContactSemantics::Solid,
+                                           test::randomPoses(problem, std::size_t(test::cases(160)), rng));
+        EXPECT_GT(v.freeProved + v.collidingProved, 0) << name;
+    }
+}
+
+TEST(GridFirst, SweptProximityProofsHoldAlongTheSweep)
+{
+    // withinSweptDistance false must mean: no robot point p comes within t + r |p| of the
+    // environment. Checked with the exact distance: distance > t + r * (robot radius) suffices
+    // for the robot's reach, so a proof is compared with the tighter exact bound per vertex too.
+    CollisionScene scene;
+    test::TestRandom rng(test::seeded(15));
+    scene.environment = shared(clutter(rng, 1.0));
+    scene.robot = shared(test::boxMesh(Vec3(-0.1, -0.05, -0.05), Vec3(0.2, 0.05, 0.05)));
+    const auto reference = makeChecker("bruteforce", scene);
+    const auto checker = makeChecker("obb", scene);
+    const auto *grid = dynamic_cast<const GridFirstChecker *>(checker.get());
+    ASSERT_NE(grid, nullptr);
+    int proved = 0;
+    for (int i = 0; i < test::cases(400); ++i)
+    {
+        const RigidTransform pose = randomPose(rng, 1.3);
+        const double slack = 0.02 * (i % 5), radial = 0.05 * (i % 3);
+        if (!grid->freeByGrid(pose, slack, radial))
+            continue;
+        ++proved;
+        // Every robot point p is within 0.25 of the origin here; the exact distance must exceed
+        // the largest slack any point may have.
+        const double reach = scene.robot->radiusAboutOrigin();
+        EXPECT_GT(reference->distance(pose), slack + radial * reach - 1e-12) << i;
+    }
+    EXPECT_GT(proved, 20);
+}
