@@ -37,7 +37,8 @@ CoverSphere sphereOf(const std::vector<Piece> &pieces, std::size_t first, std::s
         for (const Vec3 &v : pieces[p])
             squared = std::max(squared, (v - s.center).squaredNorm());
     // Outward rounding: the cut corners and the distances carry a few ulps of the coordinates.
-    s.radius = std::sqrt(squared) * (1.0 + 1e-12) + 1e-12 * (box.min.cwiseAbs().maxCoeff() + box.max.cwiseAbs().maxCoeff());
+    s.radius =
+        std::sqrt(squared) * (1.0 + 1e-12) + 1e-12 * (box.min.cwiseAbs().maxCoeff() + box.max.cwiseAbs().maxCoeff());
     s.probe = pieces[first][0];
     return s;
 }

@@ -19,7 +19,8 @@ std::vector<Vec3> firstVertexOfEachComponent(const SolidQuery &solids)
 
 GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, const CollisionScene &scene,
                                    ContactSemantics semantics, GridFirstSettings settings)
-    : exact_(std::move(exact)), solid_(semantics == ContactSemantics::Solid)
+    : exact_(std::move(exact)),
+      solid_(semantics == ContactSemantics::Solid)
 {
     if (!scene.robot || !scene.environment || scene.robot->empty() || scene.environment->empty())
         return;
@@ -120,8 +121,7 @@ bool GridFirstChecker::doCollides(const RigidTransform &worldFromRobot, QueryCon
     return exact_->collides(worldFromRobot, context);
 }
 
-bool GridFirstChecker::doWithinDistance(const RigidTransform &worldFromRobot, double delta,
-                                        QueryContext &context) const
+bool GridFirstChecker::doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const
 {
     if (delta >= 0.0 && freeByGrid(worldFromRobot, delta, 0.0))
         return false;

@@ -22,7 +22,8 @@ double pointMeshDistance(const TriangleMesh &mesh, const Vec3 &p)
 {
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        best = std::min(best, (closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)) - p).norm());
+        best = std::min(
+            best, (closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)) - p).norm());
     return best;
 }
 
@@ -58,7 +59,10 @@ TriangleMesh clutter(test::TestRandom &rng, double scale)
     return mesh;
 }
 
-std::shared_ptr<const TriangleMesh> shared(TriangleMesh mesh) { return std::make_shared<const TriangleMesh>(std::move(mesh)); }
+std::shared_ptr<const TriangleMesh> shared(TriangleMesh mesh)
+{
+    return std::make_shared<const TriangleMesh>(std::move(mesh));
+}
 
 RigidTransform randomPose(test::TestRandom &rng, double extent)
 {
@@ -72,7 +76,8 @@ struct Verdicts
 };
 
 /// Every answer of the grid-first checker equals bruteforce's; each proof alone is never wrong.
-Verdicts expectAgreement(const CollisionScene &scene, ContactSemantics semantics, const std::vector<RigidTransform> &poses)
+Verdicts expectAgreement(const CollisionScene &scene, ContactSemantics semantics,
+                         const std::vector<RigidTransform> &poses)
 {
     CheckerOptions exactOnly;
     exactOnly.semantics = semantics;

@@ -14,12 +14,13 @@ namespace hcd
 {
 struct GridFirstSettings
 {
-    std::size_t robotSpheres = 16;  ///< leaves of the robot's cover tree (at most 32)
-    std::size_t maxCells = std::size_t(1) << 19;  ///< environment grid cells (1 byte each, 2 with solids)
+    std::size_t robotSpheres = 32;                ///< leaves of the robot's cover tree (at most 32)
+    std::size_t maxCells = std::size_t(1) << 20;  ///< environment grid cells (1 byte each, 2 with solids)
 };
 
 /// Two proofs before the exact checker:
-/// - free: a cut of the robot's cover tree (root first, children of a sphere that fails) lies in grid cells whose clearance exceeds its radius (so no
+/// - free: a cut of the robot's cover tree (root first, children of a sphere that fails) lies in grid cells whose
+/// clearance exceeds its radius (so no
 ///   robot triangle touches the environment) and, with solid semantics, on the outside of every
 ///   closed environment solid; for a closed robot, no environment component's first vertex lies
 ///   within the robot's reach of its origin (so none is inside the robot). Then the robot is free.
@@ -32,8 +33,8 @@ class GridFirstChecker final : public CollisionChecker
 {
 public:
     /// `exact` answers with `semantics`; the grid is built over `scene.environment`.
-    GridFirstChecker(std::unique_ptr<CollisionChecker> exact, const CollisionScene &scene,
-                     ContactSemantics semantics, GridFirstSettings settings = {});
+    GridFirstChecker(std::unique_ptr<CollisionChecker> exact, const CollisionScene &scene, ContactSemantics semantics,
+                     GridFirstSettings settings = {});
 
     std::string name() const override { return exact_->name(); }
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
