@@ -116,6 +116,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     // Occupied cells: the triangle's bounding box, grown for rounding, cut by a slab around its
     // plane as wide as the cell's projection on the normal. Marks a superset of touched cells.
     std::vector<double> squared(cellCount, kUnreached);
+    std::vector<std::uint32_t> firstTriangle(settings.keepTriangles ? cellCount : 0, ~0u);
     const double boxSlack = 1e-9 * magnitude;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
@@ -135,7 +136,12 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                 {
                     const Vec3 centre = origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5);
                     if (std::abs(normal.dot(centre - a)) <= reach)
-                        squared[cellIndex(x, y, z)] = 0.0;
+                    {
+                        const std::size_t i = cellIndex(x, y, z);
+                        squared[i] = 0.0;
+                        if (settings.keepTriangles && firstTriangle[i] == ~0u)
+                            firstTriangle[i] = std::uint32_t(t);
+                    }
                 }
     }
     std::vector<std::uint8_t> freeCell(cellCount);
@@ -143,6 +149,23 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     {
         freeCell[i] = squared[i] != 0.0;
         occupied_ += !freeCell[i];
+    }
+    if (settings.keepTriangles)
+    {
+        occupiedMask_.assign((cellCount + 63) / 64, 0);
+        occupiedBefore_.assign(occupiedMask_.size(), 0);
+        std::uint32_t count = 0;
+        for (std::size_t i = 0; i < cellCount; ++i)
+        {
+            if (i % 64 == 0)
+                occupiedBefore_[i / 64] = count;
+            if (!freeCell[i])
+            {
+                occupiedMask_[i / 64] |= std::uint64_t(1) << (i % 64);
+                occupiedTriangle_.push_back(firstTriangle[i]);
+                ++count;
+            }
+        }
     }
     distanceTransform3d(squared, nx_, ny_, nz_);
 
@@ -210,6 +233,23 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             markerSteps_[i] = std::uint8_t(stepsBelow(squared[i], 255));
     }
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
+{
+    if (occupiedMask_.empty())
+        return -1;
+    const double fx = (p.x() - origin_.x()) * inverseCellSize_;
+    const double fy = (p.y() - origin_.y()) * inverseCellSize_;
+    const double fz = (p.z() - origin_.z()) * inverseCellSize_;
+    if (!(fx >= 0.0 && fy >= 0.0 && fz >= 0.0 && fx < nx_ && fy < ny_ && fz < nz_))
+        return -1;
+    const std::size_t i = (std::size_t(fz) * ny_ + std::size_t(fy)) * nx_ + std::size_t(fx);
+    const std::uint64_t word = occupiedMask_[i / 64];
+    const std::uint64_t bit = std::uint64_t(1) << (i % 64);
+    if (!(word & bit))
+        return -1;
+    return occupiedTriangle_[occupiedBefore_[i / 64] + std::size_t(__builtin_popcountll(word & (bit - 1)))];
 }
 
 ClearanceSample ClearanceGrid::at(const Vec3 &p) const

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/query/grid_first_checker.h"
 
+#include "hybridcd/geometry/triangle_distance.h"
+
 #include <algorithm>
 
 namespace hcd
@@ -42,6 +44,14 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
         const SolidQuery robotSolids(robot.mesh);
         robotHasSolids_ = robotSolids.closedComponentCount() > 0;
         environmentHasSolids_ = environmentSolids.closedComponentCount() > 0;
+        if (robotHasSolids_)
+        {
+            ClearanceGridSettings robotSettings;
+            robotSettings.maxCells = settings.maxRobotCells;
+            robotGrid_ = ClearanceGrid(*robot.mesh, &robotSolids, {}, robotSettings);
+            gridSettings.keepTriangles = true;
+            environment_ = environment.mesh;
+        }
         grid_ = ClearanceGrid(*environment.mesh, &environmentSolids,
                               robotHasSolids_ ? firstVertexOfEachComponent(environmentSolids) : std::vector<Vec3>{},
                               gridSettings);
@@ -100,14 +110,34 @@ bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double t
 
 bool GridFirstChecker::collidingByGrid(const RigidTransform &worldFromRobot) const
 {
-    if (!solid_ || !environmentHasSolids_ || grid_.empty())
+    if (!solid_ || grid_.empty() || !worldFromRobot.isFinite())
         return false;
-    for (const CoverSphere &s : cover_)
+    // Rounding in a mapped point, against how far beyond a free cell its side is known.
+    const double rounding = 1e-15 * 8.0 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_ + 1.0);
+    const auto certainlyInside = [rounding](const ClearanceGrid &grid, const ClearanceSample &s) {
+        return s.inside && (rounding < 0.5 * grid.certainMargin() || s.clearance > rounding);
+    };
+    if (environmentHasSolids_)
+        for (const CoverSphere &s : cover_)
+            if (s.firstChild < 0 && certainlyInside(grid_, grid_.at(worldFromRobot.apply(s.probe))))
+                return true;
+    if (!robotGrid_.empty())
     {
-        if (s.firstChild >= 0)
-            continue;
-        if (grid_.at(worldFromRobot.apply(s.probe)).inside)
-            return true;
+        const RigidTransform robotFromWorld = worldFromRobot.inverse();
+        const TriangleMesh &env = *environment_;
+        for (const CoverSphere &s : cover_)
+        {
+            if (s.firstChild >= 0)
+                continue;
+            const Vec3 centre = worldFromRobot.apply(s.center);
+            const std::int64_t t = grid_.triangleNear(centre);
+            if (t < 0)
+                continue;
+            const Vec3 onSurface = closestPointOnTriangle(centre, env.corner(std::size_t(t), 0),
+                                                          env.corner(std::size_t(t), 1), env.corner(std::size_t(t), 2));
+            if (certainlyInside(robotGrid_, robotGrid_.at(robotFromWorld.apply(onSurface))))
+                return true;
+        }
     }
     return false;
 }

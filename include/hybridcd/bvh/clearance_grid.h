@@ -18,6 +18,8 @@ struct ClearanceGridSettings
     std::size_t maxCells = std::size_t(1) << 19;
     /// The grid covers the mesh's bounding box grown by this much on every side (world units).
     double margin = 0.0;
+    /// Keep, for each occupied cell, one triangle that marked it (triangleNear()).
+    bool keepTriangles = false;
 };
 
 /// What the grid knows about one point (world frame).
@@ -55,10 +57,21 @@ public:
     bool empty() const { return surfaceCode_.empty(); }
     ClearanceSample at(const Vec3 &p) const;
 
+    /// A triangle of the mesh that marked the cell holding p, or -1 when that cell is free, lies
+    /// beyond the grid, or triangles were not kept. Near p: within the cell's diagonal of it.
+    std::int64_t triangleNear(const Vec3 &p) const;
+
+    /// How far beyond every free cell the surface is known not to come (world units): points within
+    /// it of a free cell are on the cell's side of every solid.
+    double certainMargin() const { return roundingSlack_; }
+
     double cellSize() const { return cellSize_; }
     std::array<int, 3> cells() const { return {nx_, ny_, nz_}; }
     std::size_t occupiedCells() const { return occupied_; }
-    std::size_t memoryBytes() const { return surfaceCode_.size() + markerSteps_.size(); }
+    std::size_t memoryBytes() const
+    {
+        return surfaceCode_.size() + markerSteps_.size() + 12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
+    }
     double buildSeconds() const { return buildSeconds_; }
 
 private:
@@ -75,6 +88,11 @@ private:
     std::vector<std::uint8_t> surfaceCode_;
     /// Distance to the nearest marker, >= steps cells (saturating at 255).
     std::vector<std::uint8_t> markerSteps_;
+    /// Kept triangles: bit i % 64 of occupiedMask_[i / 64] marks occupied cell i; occupiedBefore_
+    /// counts occupied cells of earlier words, so a cell's rank indexes occupiedTriangle_.
+    std::vector<std::uint64_t> occupiedMask_;
+    std::vector<std::uint32_t> occupiedBefore_;
+    std::vector<std::uint32_t> occupiedTriangle_;
     std::size_t occupied_ = 0;
     double buildSeconds_ = 0.0;
 };

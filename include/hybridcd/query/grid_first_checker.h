@@ -14,8 +14,9 @@ namespace hcd
 {
 struct GridFirstSettings
 {
-    std::size_t robotSpheres = 32;                ///< leaves of the robot's cover tree (at most 32)
-    std::size_t maxCells = std::size_t(1) << 20;  ///< environment grid cells (1 byte each, 2 with solids)
+    std::size_t robotSpheres = 32;                     ///< leaves of the robot's cover tree (at most 32)
+    std::size_t maxCells = std::size_t(1) << 20;       ///< environment grid cells (1 byte each, 2 with solids)
+    std::size_t maxRobotCells = std::size_t(1) << 17;  ///< the robot's own grid, for a closed robot
 };
 
 /// Two proofs before the exact checker:
@@ -25,7 +26,9 @@ struct GridFirstSettings
 ///   closed environment solid; for a closed robot, no environment component's first vertex lies
 ///   within the robot's reach of its origin (so none is inside the robot). Then the robot is free.
 /// - colliding (solid semantics only): a robot vertex lies in a free grid cell inside a closed
-///   environment solid, at least one cell from its surface.
+///   environment solid; or, for a closed robot, the point of an environment triangle nearest a
+///   robot cover sphere's centre lies in a free cell of the robot's own grid (robot frame) inside
+///   a robot solid. Either is a point of one object inside a solid of the other.
 /// Everything else goes to the wrapped checker, which sets the answer, so answers are the wrapped
 /// checker's whatever the grid says (tested against bruteforce). Proximity queries use the same
 /// proof with each sphere grown by the slack; distance and contacts go straight to the wrapped one.
@@ -70,5 +73,7 @@ private:
     double robotReach_ = 0.0;  ///< max |vertex| of the robot (robot frame)
     std::vector<CoverSphere> cover_;
     ClearanceGrid grid_;
+    ClearanceGrid robotGrid_;  ///< the robot's own grid (robot frame), with inside labels; closed robots only
+    std::shared_ptr<const TriangleMesh> environment_;  ///< the grid's mesh (each face once)
 };
 }  // namespace hcd
