@@ -264,8 +264,8 @@ std::string checkerHelp(const CheckerCatalogue &checkers)
 void addCheckerOptions(CommandLine &cl, bool several)
 {
     cl.option("checker", several ? "NAME[,NAME...]" : "NAME",
-              several ? "the checkers to use, comma-separated (default obb; listed below)"
-                      : "the collision checker (default obb; listed below)")
+              several ? "the checkers to use, comma-separated (default auto; listed below)"
+                      : "the collision checker (default auto; listed below)")
         .flag("surface-only", "treat meshes as surfaces only, as FCL does (default: closed components are solids)")
         .flag("no-grid", "no clearance grid first (default: a grid of the environment proves what it can first)")
         .option("mode", "exact|approximate", "exact (default), or approximate with --tolerance (the lp checker)")

@@ -96,7 +96,7 @@ CheckerOptions checkerOptionsOf(const CommandLine &cl);
 /// The --checker names (default `fallback`), each known to `checkers` and accepting `options`; a
 /// UsageError otherwise (listing the valid names, or suggesting the closest).
 std::vector<std::string> checkerNamesOf(const CommandLine &cl, const CheckerCatalogue &checkers,
-                                        const CheckerOptions &options = {}, const std::string &fallback = "obb");
+                                        const CheckerOptions &options = {}, const std::string &fallback = "auto");
 
 /// Splits "a,b,c" (empty items dropped).
 std::vector<std::string> splitList(const std::string &text);

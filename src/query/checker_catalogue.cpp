@@ -20,6 +20,20 @@ CheckerEntry treeEntry(const char *name, const char *description)
             }};
 }
 
+/// Share of a mesh's surface area (each face once) whose normal is within about 1 degree of a
+/// coordinate axis: walls, floors and boxes of architectural models.
+void addAxisAlignedArea(const TriangleMesh &mesh, double &aligned, double &total)
+{
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+        const Vec3 n = (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+        const double twiceArea = n.norm();
+        total += twiceArea;
+        if (twiceArea > 0.0 && n.cwiseAbs().maxCoeff() >= 0.99985 * twiceArea)
+            aligned += twiceArea;
+    }
+}
+
 std::string joined(const std::vector<std::string> &names)
 {
     std::string list;
@@ -32,7 +46,7 @@ std::string joined(const std::vector<std::string> &names)
 CheckerCatalogue CheckerCatalogue::builtIn()
 {
     CheckerCatalogue c;
-    c.add(treeEntry<Obb>("obb", "OBB trees, exact triangle tests at the leaves (the default)"));
+    c.add(treeEntry<Obb>("obb", "OBB trees, exact triangle tests at the leaves"));
     c.add(treeEntry<Ellipsoid>("ellipsoid", "bounding-ellipsoid trees, exact triangle tests at the leaves"));
     c.add(treeEntry<HybridVolume<false>>("hybrid", "OBB and ellipsoid per node, the box tested first"));
     c.add(treeEntry<HybridVolume<true>>("hybrid-ellipsoid-first",
@@ -44,6 +58,20 @@ CheckerCatalogue CheckerCatalogue::builtIn()
     c.add(treeEntry<KDop<14>>("kdop14", "14-DOP trees (axes and cube diagonals), exact triangle tests at the leaves"));
     c.add(treeEntry<KDop<18>>("kdop18", "18-DOP trees (axes and edge diagonals), exact triangle tests at the leaves"));
     c.add(treeEntry<KDop<26>>("kdop26", "26-DOP trees (all 13 directions), exact triangle tests at the leaves"));
+    c.add({"auto",
+           "the default: the volume for the scene, from the bench tables: kdop18 for environments of 10,000 faces or "
+           "more, "
+           "aabb where 60% of the environment's area faces a coordinate axis, obb otherwise",
+           [](const CollisionScene &s, const CheckerOptions &o) -> std::unique_ptr<CollisionChecker> {
+               const DistinctFaceMesh environment = withoutRepeatedFaces(s.environment);
+               if (environment.mesh->triangleCount() >= 10000)
+                   return treeEntry<KDop<18>>("auto", "").factory(s, o);
+               double aligned = 0.0, total = 0.0;
+               addAxisAlignedArea(*environment.mesh, aligned, total);
+               if (total > 0.0 && aligned >= 0.6 * total)
+                   return treeEntry<Aabb>("auto", "").factory(s, o);
+               return treeEntry<Obb>("auto", "").factory(s, o);
+           }});
     c.add({"bruteforce", "every triangle pair, no hierarchy (the slow reference)",
            [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<BruteForceChecker>(s); },
            false, false, true});

@@ -58,8 +58,8 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
     ASSERT_EQ(stats.status, 0) << stats.output;
     // By default hybridcd's set-up runs beside OMPL.app's (FCL, discrete motion checks at 0.01).
     EXPECT_EQ(summarize(dir + "/small.db"),
-              "geometric_KPIECE1[fcl+discrete(0.01)]|2|0,1;geometric_KPIECE1[obb+continuous]|2|0,1;"
-              "geometric_RRTConnect[fcl+discrete(0.01)]|2|0,1;geometric_RRTConnect[obb+continuous]|2|0,1\n");
+              "geometric_KPIECE1[auto+continuous]|2|0,1;geometric_KPIECE1[fcl+discrete(0.01)]|2|0,1;"
+              "geometric_RRTConnect[auto+continuous]|2|0,1;geometric_RRTConnect[fcl+discrete(0.01)]|2|0,1\n");
     // The baseline really ran OMPL's DiscreteMotionValidator, whose motion counters give OMPL's
     // "valid segment fraction" (hybridcd's validator keeps its own, so OMPL's reads 0), at the
     // resolution 0.01 every configuration records among its settings.
@@ -69,8 +69,8 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
         "p.settings like \\'%longest_valid_segment_fraction = 0.01%\\' from runs r join plannerConfigs p on "
         "r.plannerid = p.id group by p.name order by p.name')))";
     EXPECT_EQ(shell("python3 -c \"" + py + "\" " + dir + "/small.db").output,
-              "geometric_KPIECE1[fcl+discrete(0.01)]|1|1;geometric_KPIECE1[obb+continuous]|0|1;"
-              "geometric_RRTConnect[fcl+discrete(0.01)]|1|1;geometric_RRTConnect[obb+continuous]|0|1\n");
+              "geometric_KPIECE1[auto+continuous]|0|1;geometric_KPIECE1[fcl+discrete(0.01)]|1|1;"
+              "geometric_RRTConnect[auto+continuous]|0|1;geometric_RRTConnect[fcl+discrete(0.01)]|1|1\n");
 }
 
 // Planner names "planner[configuration]" of a log, in its order (the lines after "N planners").
@@ -167,9 +167,9 @@ TEST(Bench, ShardsUnderGnuParallelAndSlurmMergeIntoTheUnshardedExperiment)
     const std::string expected = experimentsOf(dir + "/whole.db");
     ASSERT_EQ(expected,
               "corridor_2d|5\n"
-              "geometric_KPIECE1[fcl+discrete(0.01)]|5|0,1,2,3,4;geometric_KPIECE1[obb+continuous]|5|0,1,2,3,4;"
-              "geometric_RRTConnect[fcl+discrete(0.01)]|5|0,1,2,3,4;"
-              "geometric_RRTConnect[obb+continuous]|5|0,1,2,3,4\n");
+              "geometric_KPIECE1[auto+continuous]|5|0,1,2,3,4;geometric_KPIECE1[fcl+discrete(0.01)]|5|0,1,2,3,4;"
+              "geometric_RRTConnect[auto+continuous]|5|0,1,2,3,4;"
+              "geometric_RRTConnect[fcl+discrete(0.01)]|5|0,1,2,3,4\n");
 
     // Three shards side by side under GNU parallel (-S 2/: is parallel's local "ssh login", two jobs).
     const Output sharded = shell("parallel -S 2/: --halt now,fail=1 " + cli + " bench " + cfg + options +

@@ -128,7 +128,7 @@ TEST(Cli, CheckPrintsOneVerdictPerPose)
 
 TEST(Cli, InspectDescribesMeshesAndHierarchies)
 {
-    const CliRun r = run("inspect " + problem3d());
+    const CliRun r = run("inspect " + problem3d() + " --checker obb");
     ASSERT_EQ(r.status, 0) << r.output;
     for (const char *field :
          {"triangles:", "vertices:", "closed (watertight): yes", "bounding box:", "OBB tree:", "nodes"})
