@@ -245,10 +245,7 @@ Ssv Ssv::fit(const std::vector<Vec3> &points)
     return best;
 }
 
-double ssvGap(const Ssv &a, const Ssv &b)
-{
-    return std::sqrt(coreDistanceSquared(a, b, -1.0)) - a.radius - b.radius;
-}
+double ssvGap(const Ssv &a, const Ssv &b) { return std::sqrt(coreDistanceSquared(a, b, -1.0)) - a.radius - b.radius; }
 
 bool ssvsOverlap(const Ssv &a, const Ssv &b, double tolerance)
 {
@@ -261,11 +258,11 @@ bool ssvsOverlap(const Ssv &a, const Ssv &b, double tolerance)
     const double dn = d.norm();
     if (dn > 0.0 && dn > extent(a, d / dn) + extent(b, d / dn) + tolerance)
         return false;
-    if (a.kind == Ssv::Kind::Rectangle && std::fabs(d.dot(a.axes.col(2))) > extent(a, a.axes.col(2)) +
-                                                                                extent(b, a.axes.col(2)) + tolerance)
+    if (a.kind == Ssv::Kind::Rectangle &&
+        std::fabs(d.dot(a.axes.col(2))) > extent(a, a.axes.col(2)) + extent(b, a.axes.col(2)) + tolerance)
         return false;
-    if (b.kind == Ssv::Kind::Rectangle && std::fabs(d.dot(b.axes.col(2))) > extent(a, b.axes.col(2)) +
-                                                                                extent(b, b.axes.col(2)) + tolerance)
+    if (b.kind == Ssv::Kind::Rectangle &&
+        std::fabs(d.dot(b.axes.col(2))) > extent(a, b.axes.col(2)) + extent(b, b.axes.col(2)) + tolerance)
         return false;
     const double reach = a.radius + b.radius + tolerance;
     return coreDistanceSquared(a, b, reach * reach) <= reach * reach;

@@ -38,9 +38,7 @@ bool triangleTouchesCube(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3
     return true;
 }
 
-Octree::Octree(std::shared_ptr<const TriangleMesh> mesh, Limits limits)
-    : mesh_(std::move(mesh)),
-      limits_(limits)
+Octree::Octree(std::shared_ptr<const TriangleMesh> mesh, Limits limits) : mesh_(std::move(mesh)), limits_(limits)
 {
     const auto start = std::chrono::steady_clock::now();
     const std::size_t n = mesh_->triangleCount();
@@ -88,8 +86,7 @@ void Octree::build(std::uint32_t cell, std::vector<std::uint32_t> triangles, std
         const Vec3 c = center + half * Vec3(octant & 1 ? 1 : -1, octant & 2 ? 1 : -1, octant & 4 ? 1 : -1);
         std::vector<std::uint32_t> inside;
         for (const std::uint32_t t : triangles)
-            if (triangleTouchesCube(mesh_->corner(t, 0), mesh_->corner(t, 1), mesh_->corner(t, 2), c, half,
-                                    tolerance_))
+            if (triangleTouchesCube(mesh_->corner(t, 0), mesh_->corner(t, 1), mesh_->corner(t, 2), c, half, tolerance_))
                 inside.push_back(t);
         if (!inside.empty())
             children.emplace_back(c, std::move(inside));

@@ -36,10 +36,7 @@ std::vector<Vec3> coreSamples(const Ssv &s, int steps)
 }
 
 // The largest distance from a core point to its nearest grid sample.
-double samplingError(const Ssv &s, int steps)
-{
-    return std::hypot(s.halfLength[0], s.halfLength[1]) / steps;
-}
+double samplingError(const Ssv &s, int steps) { return std::hypot(s.halfLength[0], s.halfLength[1]) / steps; }
 
 // A random core of the given kind at scale `scale`; `degenerate` gives a rectangle a zero side.
 Ssv randomSsv(test::TestRandom &rng, Ssv::Kind kind, double scale, bool degenerate = false)
@@ -82,8 +79,8 @@ TEST(SweptSphere, EachKindHoldsItsPoints)
                                           : Vec3(0, 0, 0);
         std::vector<Vec3> points(1 + std::size_t(rng() % 40));
         for (Vec3 &p : points)
-            p = offset + scale * (r * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1))
-                                          .cwiseProduct(stretch));
+            p = offset +
+                scale * (r * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).cwiseProduct(stretch));
         for (const Ssv::Kind kind : kKinds)
         {
             const Ssv s = Ssv::fitKind(points, kind);

@@ -66,7 +66,9 @@ TEST(Octree, TriangleCubeTestMatchesExactReference)
         const double scale = std::pow(10.0, double(trial % 9) - 4.0);
         const Vec3 center = scale * Vec3(uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5));
         const double h = scale * uniform(rng, 0.1, 1.0);
-        const auto corner = [&](int i) -> Vec3 { return center + h * Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1); };
+        const auto corner = [&](int i) -> Vec3 {
+            return center + h * Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+        };
         Vec3 p[3];
         const int shape = trial % 4;
         for (Vec3 &q : p)
@@ -142,8 +144,7 @@ TEST(Octree, LeavesListEveryTouchingTriangle)
         {
             const bool inList = std::binary_search(listed.begin(), listed.end(), t);
             listedIn[t] += inList ? 1 : 0;
-            if (exactlyTouches(mesh->corner(t, 0), mesh->corner(t, 1), mesh->corner(t, 2), cell.center,
-                               cell.halfSide))
+            if (exactlyTouches(mesh->corner(t, 0), mesh->corner(t, 1), mesh->corner(t, 2), cell.center, cell.halfSide))
                 ASSERT_TRUE(inList) << "triangle " << t << " touches a leaf that does not list it";
         }
     }

@@ -26,7 +26,7 @@ class Octree
 public:
     struct Limits
     {
-        unsigned maxDepth = 10;     ///< levels below the root
+        unsigned maxDepth = 10;      ///< levels below the root
         unsigned leafTriangles = 8;  ///< a cell with more is split (above maxDepth)
     };
 
