@@ -224,4 +224,23 @@ HCD_VOLUME_BENCHMARKS(KDop<14>, "kdop14")
 HCD_VOLUME_BENCHMARKS(KDop<18>, "kdop18")
 HCD_VOLUME_BENCHMARKS(KDop<26>, "kdop26")
 HCD_VOLUME_BENCHMARKS(Ssv, "ssv")
+
+// The octree checker's node test: a robot OBB against an axis-aligned cell (a cube as big as the
+// second blob's box); placing a robot node is the OBB's.
+void BM_VolumeOverlapOctreeCell(benchmark::State &state)
+{
+    const auto pairs = fittedPairs<Obb>();
+    std::vector<Obb> cells;
+    for (const auto &p : pairs)
+        cells.push_back({p.second.center, Mat3::Identity(), Vec3::Constant(p.second.halfExtents.maxCoeff())});
+    std::size_t i = 0, hits = 0;
+    for (auto _ : state)
+    {
+        hits += obbsOverlap(pairs[i & 1023].first, cells[i & 1023], 1e-12);
+        ++i;
+    }
+    state.counters["overlap fraction"] = double(hits) / double(i);
+}
+BENCHMARK(BM_VolumeOverlapOctreeCell)->Name("BM_VolumeOverlap/octree");
+BENCHMARK_TEMPLATE(BM_VolumeTransform, Obb)->Name("BM_VolumeTransform/octree");
 }  // namespace

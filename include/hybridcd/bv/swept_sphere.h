@@ -58,7 +58,8 @@ struct Ssv
 double ssvGap(const Ssv &a, const Ssv &b);
 
 /// True unless the volumes are more than `tolerance` apart. A slab test along the line of centres
-/// and the two core normals rejects most far pairs first; the core distance decides the rest.
+/// and the separating-axis test of the boxes around the two volumes reject most far pairs first;
+/// the core distance decides the rest.
 bool ssvsOverlap(const Ssv &a, const Ssv &b, double tolerance);
 
 /// ssvGap less `tolerance`, never below zero: a lower bound on the distance between the contents.
