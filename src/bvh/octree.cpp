@@ -65,18 +65,20 @@ Octree::Octree(std::shared_ptr<const TriangleMesh> mesh, Limits limits) : mesh_(
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void Octree::makeLeaf(std::uint32_t cell, const std::vector<std::uint32_t> &triangles)
+{
+    Cell &leaf = cells_[cell];
+    leaf.firstTriangle = std::uint32_t(references_.size());
+    leaf.triangleCount = std::uint32_t(triangles.size());
+    references_.insert(references_.end(), triangles.begin(), triangles.end());
+    ++leaves_;
+}
+
 void Octree::build(std::uint32_t cell, std::vector<std::uint32_t> triangles, std::size_t level)
 {
     depth_ = std::max(depth_, level + 1);
     if (triangles.size() <= limits_.leafTriangles || level >= limits_.maxDepth)
-    {
-        Cell &leaf = cells_[cell];
-        leaf.firstTriangle = std::uint32_t(references_.size());
-        leaf.triangleCount = std::uint32_t(triangles.size());
-        references_.insert(references_.end(), triangles.begin(), triangles.end());
-        ++leaves_;
-        return;
-    }
+        return makeLeaf(cell, triangles);
     // Sort the triangles into the eight octants; keep the octants that hold any.
     const Vec3 center = cells_[cell].center;
     const double half = 0.5 * cells_[cell].halfSide;
@@ -95,15 +97,14 @@ void Octree::build(std::uint32_t cell, std::vector<std::uint32_t> triangles, std
     // octant still holds all of the cell's triangles, the cell stays a leaf.
     const bool stuck = std::any_of(children.begin(), children.end(),
                                    [&](const auto &child) { return child.second.size() == triangles.size(); });
-    if (stuck)
-    {
-        Cell &leaf = cells_[cell];
-        leaf.firstTriangle = std::uint32_t(references_.size());
-        leaf.triangleCount = std::uint32_t(triangles.size());
-        references_.insert(references_.end(), triangles.begin(), triangles.end());
-        ++leaves_;
-        return;
-    }
+    // A bound on memory whatever the mesh: the octants may list a triangle many times over, and
+    // past 32 listings per triangle on average, cells are no longer split.
+    std::size_t listings = 0;
+    for (const auto &child : children)
+        listings += child.second.size();
+    if (stuck || listed_ + listings > 32 * mesh_->triangleCount())
+        return makeLeaf(cell, triangles);
+    listed_ += listings;
     triangles.clear();
     triangles.shrink_to_fit();
     const std::uint32_t first = std::uint32_t(cells_.size());

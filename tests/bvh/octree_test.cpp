@@ -104,23 +104,14 @@ TEST(Octree, TriangleCubeTestMatchesExactReference)
     EXPECT_GT(apart, test::cases(4000) / 5);
 }
 
-TEST(Octree, LeavesListEveryTouchingTriangle)
+namespace
 {
-    test::TestRandom rng(test::seeded(4102));
-    // A soup of small and a few large triangles, so cells are split and triangles span cells.
-    auto mesh = std::make_shared<TriangleMesh>();
-    for (int t = 0; t < 400; ++t)
-    {
-        const Vec3 c(uniform(rng, -10, 10), uniform(rng, -10, 10), uniform(rng, -10, 10));
-        const double size = t % 40 == 0 ? 8.0 : 0.8;
-        for (int k = 0; k < 3; ++k)
-            mesh->vertices.push_back(c + size * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)));
-        mesh->triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
-    }
-    const Octree tree(mesh, {6, 4});
+// Each leaf lists exactly the triangles that touch it (and possibly a few within the rounding
+// tolerance), children nest in their parents, and every triangle is listed somewhere.
+void checkLeaves(const Octree &tree, const TriangleMesh &mesh)
+{
     const auto &cells = tree.cells();
-    ASSERT_GT(cells.size(), 50u);
-    std::vector<int> listedIn(mesh->triangleCount(), 0);
+    std::vector<int> listedIn(mesh.triangleCount(), 0);
     std::size_t leaves = 0;
     for (const Octree::Cell &cell : cells)
     {
@@ -140,11 +131,11 @@ TEST(Octree, LeavesListEveryTouchingTriangle)
         std::vector<std::uint32_t> listed(tree.triangleReferences().begin() + cell.firstTriangle,
                                           tree.triangleReferences().begin() + cell.firstTriangle + cell.triangleCount);
         std::sort(listed.begin(), listed.end());
-        for (std::uint32_t t = 0; t < mesh->triangleCount(); ++t)
+        for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t)
         {
             const bool inList = std::binary_search(listed.begin(), listed.end(), t);
             listedIn[t] += inList ? 1 : 0;
-            if (exactlyTouches(mesh->corner(t, 0), mesh->corner(t, 1), mesh->corner(t, 2), cell.center, cell.halfSide))
+            if (exactlyTouches(mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2), cell.center, cell.halfSide))
                 ASSERT_TRUE(inList) << "triangle " << t << " touches a leaf that does not list it";
         }
     }
@@ -152,6 +143,43 @@ TEST(Octree, LeavesListEveryTouchingTriangle)
     for (int n : listedIn)
         EXPECT_GE(n, 1);
     // Every point of the environment is inside the root cube.
-    for (const Vec3 &v : mesh->vertices)
+    for (const Vec3 &v : mesh.vertices)
         EXPECT_LE((v - cells[0].center).cwiseAbs().maxCoeff(), cells[0].halfSide);
+}
+
+// A soup of triangles of the given sizes, centred within [-10, 10]^3.
+std::shared_ptr<TriangleMesh> soup(test::TestRandom &rng, int count, double small, double large, int largeEvery)
+{
+    auto mesh = std::make_shared<TriangleMesh>();
+    for (int t = 0; t < count; ++t)
+    {
+        const Vec3 c(uniform(rng, -10, 10), uniform(rng, -10, 10), uniform(rng, -10, 10));
+        const double size = t % largeEvery == 0 ? large : small;
+        for (int k = 0; k < 3; ++k)
+            mesh->vertices.push_back(c + size * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)));
+        mesh->triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
+    }
+    return mesh;
+}
+}  // namespace
+
+TEST(Octree, LeavesListEveryTouchingTriangle)
+{
+    // Small and a few large triangles, so cells are split and triangles span cells.
+    test::TestRandom rng(test::seeded(4102));
+    const auto mesh = soup(rng, 400, 0.8, 8.0, 40);
+    const Octree tree(mesh, {6, 4});
+    ASSERT_GT(tree.cells().size(), 50u);
+    checkLeaves(tree, *mesh);
+}
+
+TEST(Octree, CrossingTrianglesStayWithinTheMemoryBound)
+{
+    // Large triangles crossing each other everywhere: splitting never parts them, and the cells
+    // stop at 32 listings per triangle on average while still listing every touching triangle.
+    test::TestRandom rng(test::seeded(4103));
+    const auto mesh = soup(rng, 150, 12.0, 12.0, 1);
+    const Octree tree(mesh, {10, 1});
+    EXPECT_LE(tree.triangleReferences().size(), 33 * mesh->triangleCount());
+    checkLeaves(tree, *mesh);
 }

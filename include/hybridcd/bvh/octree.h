@@ -19,7 +19,8 @@ bool triangleTouchesCube(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3
 /// Cells are cubes in the world frame. The root is the environment's bounding cube; a cell is
 /// split into eight when it holds more than `leafTriangles` triangles and lies above `maxDepth`,
 /// unless one octant would still hold all of them (triangles meeting at a vertex: splitting would
-/// not part them). Only the children that hold triangles are kept (empty space has no cells). Each leaf lists
+/// not part them) or the cells would list the triangles more than 32 times each on average (a
+/// bound on memory). Only the children that hold triangles are kept (empty space has no cells). Each leaf lists
 /// every triangle that touches it, so a triangle spanning several leaves is listed in each.
 class Octree
 {
@@ -59,6 +60,7 @@ public:
 
 private:
     void build(std::uint32_t cell, std::vector<std::uint32_t> triangles, std::size_t level);
+    void makeLeaf(std::uint32_t cell, const std::vector<std::uint32_t> &triangles);
 
     std::shared_ptr<const TriangleMesh> mesh_;
     Limits limits_;
@@ -66,6 +68,7 @@ private:
     std::vector<Cell> cells_;
     std::vector<std::uint32_t> references_;
     std::size_t leaves_ = 0;
+    std::size_t listed_ = 0;  ///< triangle listings of every cell made so far (for the memory bound)
     std::size_t depth_ = 0;
     double buildSeconds_ = 0.0;
 };
