@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # One table over every bounding volume (obb, ellipsoid, hybrid, sphere, aabb, aabb-fixed, kdop14,
-# kdop18, kdop26) on OMPL.app's problems: node/content volume ratio, build time and memory (from
+# kdop18, kdop26, ssv, octree) on OMPL.app's problems: node/content volume ratio, build time and memory (from
 # `hybridcd inspect`), nanoseconds per volume test (hybridcd_bench_micro's BM_VolumeOverlap and
 # BM_VolumeTransform), node pairs tested and median nanoseconds per check and the ratio to FCL
 # (hybridcd_bench_checkers on the same uniform states). Needs the bench build
@@ -13,6 +13,9 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 resources=${HYBRIDCD_OMPLAPP_RESOURCES:-$root/../shared/omplapp-resources}
 checkers=obb,ellipsoid,hybrid,sphere,aabb,aabb-fixed,kdop14,kdop18,kdop26
+# Swept spheres, and the environment octree (robot OBB tree against cells; its volume test is an
+# OBB against a cube, BM_VolumeOverlap/octree, and its environment has no volume ratio).
+checkers=$checkers,ssv,octree
 states=2000
 problems=()
 while [ $# -gt 0 ]; do
@@ -42,9 +45,9 @@ for problem in "${problems[@]}"; do
   [ -f "$cfg" ] || cfg=$resources/$problem.cfg
   [ -f "$cfg" ] || { echo "hierarchy_table.sh: no problem file $problem" >&2; exit 1; }
   name=$(basename "$cfg" .cfg)
-  "$root/build/hybridcd" inspect "$cfg" --checker "$checkers" | awk '
+  "$root/build/hybridcd" inspect "$cfg" --no-grid --checker "$checkers" | awk '
     /^checker / { checker = $2; sub(/:$/, "", checker) }
-    /^  (robot|environment) .*tree:/ {
+    /^  (robot|environment) .*(tree:|octree \()/ {
       side = ($1 == "robot") ? "r" : "e";
       line = $0;
       build = line; sub(/.*build /, "", build); sub(/ ms.*/, "", build);
@@ -52,7 +55,7 @@ for problem in "${problems[@]}"; do
       ratio = "-"; if (line ~ /volume ratio/) { ratio = line; sub(/.*content /, "", ratio); sub(/ .*/, "", ratio) }
       b[checker] += build; m[checker] += mem; r[checker, side] = ratio; seen[checker] = 1 }
     END { for (c in seen) printf "%s %s %s %.2f %.0f\n", c, r[c, "r"], r[c, "e"], b[c], m[c] }' > "$tmp/inspect.txt"
-  "$root/build/bench/hybridcd_bench_checkers" --states "$states" --no-reference --checker "$checkers,fcl" "$cfg" |
+  "$root/build/bench/hybridcd_bench_checkers" --states "$states" --no-reference --no-grid --checker "$checkers,fcl" "$cfg" |
     awk -F'|' 'NR > 2 { gsub(/ /, "", $3); gsub(/ /, "", $4); gsub(/ /, "", $6); gsub(/ /, "", $10);
                         print $3, $4, $6, $10 }' > "$tmp/checks.txt"
   awk -v p="$name" '
@@ -60,7 +63,7 @@ for problem in "${problems[@]}"; do
     FILENAME ~ /inspect/ { rr[$1] = $2; re[$1] = $3; build[$1] = $4; mem[$1] = $5; next }
     { c = $1; med = $2; vs = $3; pairs = $4;
       if (c == "fcl") { printf "| %s | fcl (OBBRSS) | - | - | - | - | - | %s | 1.00 |\n", p, med; next }
-      ratio = sprintf("%.3g / %.3g", rr[c], re[c]);
+      ratio = sprintf("%s / %s", rr[c] == "-" ? "-" : sprintf("%.3g", rr[c]), re[c] == "-" ? "-" : sprintf("%.3g", re[c]));
       vt = sprintf("%.1f (+ %.1f)", ns[c, "overlap"], ns[c, "place"]);
       printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", p, c, ratio, build[c], mem[c], vt, pairs, med, vs }
   ' "$tmp/micro.txt" "$tmp/inspect.txt" "$tmp/checks.txt"

@@ -87,11 +87,19 @@ std::vector<ContactPair> BruteForceChecker::doContacts(const RigidTransform &wor
         const Vec3 a0 = worldFromRobot.apply(robot.corner(i, 0));
         const Vec3 a1 = worldFromRobot.apply(robot.corner(i, 1));
         const Vec3 a2 = worldFromRobot.apply(robot.corner(i, 2));
+        const Vec3 lo = a0.cwiseMin(a1).cwiseMin(a2), hi = a0.cwiseMax(a1).cwiseMax(a2);
         for (std::uint32_t j = 0; j < env.triangleCount() && found.size() < limit; ++j)
+        {
+            // Triangles whose bounding boxes are disjoint cannot meet (exact comparisons).
+            const Vec3 &b0 = env.corner(j, 0), &b1 = env.corner(j, 1), &b2 = env.corner(j, 2);
+            if ((b0.array() > hi.array() && b1.array() > hi.array() && b2.array() > hi.array()).any() ||
+                (b0.array() < lo.array() && b1.array() < lo.array() && b2.array() < lo.array()).any())
+                continue;
             if (trianglesIntersect(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2)))
                 found.push_back(
                     {ContactPair::Kind::Triangles, robotFaces_.source(i), environmentFaces_.source(j),
                      triangleContactPoint(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2))});
+        }
     }
     return found;
 }
@@ -107,8 +115,21 @@ double BruteForceChecker::doDistance(const RigidTransform &worldFromRobot, Query
         const Vec3 a0 = worldFromRobot.apply(robot.corner(i, 0));
         const Vec3 a1 = worldFromRobot.apply(robot.corner(i, 1));
         const Vec3 a2 = worldFromRobot.apply(robot.corner(i, 2));
+        const Vec3 lo = a0.cwiseMin(a1).cwiseMin(a2), hi = a0.cwiseMax(a1).cwiseMax(a2);
         for (std::size_t j = 0; j < env.triangleCount() && best > 0.0; ++j)
-            best = std::min(best, triangleDistance(a0, a1, a2, env.corner(j, 0), env.corner(j, 1), env.corner(j, 2)));
+        {
+            // The gap between the bounding boxes is at most the triangles' distance: a pair whose
+            // gap, less a margin far above rounding at these coordinates, is no nearer than the
+            // best distance yet cannot lower it.
+            const Vec3 &b0 = env.corner(j, 0), &b1 = env.corner(j, 1), &b2 = env.corner(j, 2);
+            const Vec3 blo = b0.cwiseMin(b1).cwiseMin(b2), bhi = b0.cwiseMax(b1).cwiseMax(b2);
+            const double gap = (blo - hi).cwiseMax(lo - bhi).cwiseMax(0.0).norm();
+            const double margin = 1e-9 * std::max({lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff(),
+                                                   blo.cwiseAbs().maxCoeff(), bhi.cwiseAbs().maxCoeff()});
+            if (gap - margin >= best)
+                continue;
+            best = std::min(best, triangleDistance(a0, a1, a2, b0, b1, b2));
+        }
     }
     context.stats.primitiveTests += robot.triangleCount() * env.triangleCount();
     return best;

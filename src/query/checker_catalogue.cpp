@@ -3,6 +3,7 @@
 
 #include "hybridcd/query/brute_force_checker.h"
 #include "hybridcd/query/grid_first_checker.h"
+#include "hybridcd/query/octree_checker.h"
 #include "hybridcd/query/volume_tree_checker.h"
 
 #include <stdexcept>
@@ -58,6 +59,12 @@ CheckerCatalogue CheckerCatalogue::builtIn()
     c.add(treeEntry<KDop<14>>("kdop14", "14-DOP trees (axes and cube diagonals), exact triangle tests at the leaves"));
     c.add(treeEntry<KDop<18>>("kdop18", "18-DOP trees (axes and edge diagonals), exact triangle tests at the leaves"));
     c.add(treeEntry<KDop<26>>("kdop26", "26-DOP trees (all 13 directions), exact triangle tests at the leaves"));
+    // Swept-sphere volumes (seed §3.7).
+    c.add(treeEntry<Ssv>("ssv", "swept-sphere trees: point, line or rectangle swept spheres, whichever is smallest"));
+    // An octree of the environment's volume (seed §3.1), the robot's OBB tree against its cells.
+    c.add(
+        {"octree", "an octree of the environment (occupied cells only) against the robot's OBB tree",
+         [](const CollisionScene &s, const CheckerOptions &) { return std::make_unique<OctreeChecker>(s, "octree"); }});
     c.add({"auto",
            "the default: the volume for the scene, from the bench tables: kdop18 for environments of 10,000 faces or "
            "more, "

@@ -8,6 +8,7 @@
 #include "hybridcd/query/placed_robot.h"
 #include "hybridcd/query/stamped_slots.h"
 #include "hybridcd/query/traversal_stack.h"
+#include "hybridcd/query/volume_ratio.h"
 
 #include <algorithm>
 #include <cmath>
@@ -384,32 +385,6 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
 
 namespace
 {
-// Mean node volume over content hull volume, on up to 400 evenly spread nodes whose content is not flat.
-template <class Volume>
-std::pair<double, std::size_t> meanVolumeRatio(const VolumeTree<Volume> &tree)
-{
-    const auto &nodes = tree.nodes();
-    const std::size_t step = std::max<std::size_t>(1, nodes.size() / 400);
-    double sum = 0.0;
-    std::size_t count = 0;
-    std::vector<Vec3> points;
-    for (std::size_t i = 0; i < nodes.size(); i += step)
-    {
-        points.clear();
-        for (std::uint32_t k = 0; k < nodes[i].triangleCount; ++k)
-            for (int c = 0; c < 3; ++c)
-                points.push_back(tree.mesh().corner(tree.triangleOrder()[nodes[i].firstTriangle + k], c));
-        const ConvexPiece hull = ConvexPiece::hullOf(points);
-        const double content = hullVolume(hull);
-        const double extent = hull.magnitude();
-        if (!(content > 1e-9 * extent * extent * extent))
-            continue;  // flat content (a single triangle, a planar patch): the ratio is unbounded
-        sum += VolumeTraits<Volume>::volume(nodes[i].volume) / content;
-        ++count;
-    }
-    return {count ? sum / double(count) : std::numeric_limits<double>::quiet_NaN(), count};
-}
-
 template <class Volume>
 ExportMesh levelMesh(const VolumeTree<Volume> &tree, int level)
 {
@@ -485,4 +460,5 @@ template class VolumeTreeChecker<FixedAabb>;
 template class VolumeTreeChecker<KDop<14>>;
 template class VolumeTreeChecker<KDop<18>>;
 template class VolumeTreeChecker<KDop<26>>;
+template class VolumeTreeChecker<Ssv>;
 }  // namespace hcd

@@ -50,6 +50,7 @@ double pointSetDistance(const std::vector<Vec3> &a, const std::vector<Vec3> &b)
 }
 
 bool contains(const Sphere &v, const Vec3 &p) { return v.contains(p); }
+bool contains(const Ssv &v, const Vec3 &p) { return v.contains(p); }
 bool contains(const Aabb &v, const Vec3 &p) { return v.contains(p); }
 bool contains(const FixedAabb &v, const Vec3 &p) { return v.contains(p); }
 template <int K>
@@ -62,6 +63,11 @@ bool contains(const KDop<K> &v, const Vec3 &p)
 void boundsOf(const Sphere &v, Vec3 &lo, Vec3 &hi)
 {
     lo = v.center.array() - v.radius, hi = v.center.array() + v.radius;
+}
+void boundsOf(const Ssv &v, Vec3 &lo, Vec3 &hi)
+{
+    const Vec3 reach = (v.axes.col(0) * v.halfLength[0]).cwiseAbs() + (v.axes.col(1) * v.halfLength[1]).cwiseAbs();
+    lo = v.center - reach - Vec3::Constant(v.radius), hi = v.center + reach + Vec3::Constant(v.radius);
 }
 void boundsOf(const Aabb &v, Vec3 &lo, Vec3 &hi) { lo = v.center - v.halfExtents, hi = v.center + v.halfExtents; }
 void boundsOf(const FixedAabb &v, Vec3 &lo, Vec3 &hi)
@@ -135,6 +141,7 @@ TEST(Volumes, FixedAabbFitAndTests) { checkVolume<FixedAabb>(); }
 TEST(Volumes, Kdop14FitAndTests) { checkVolume<KDop<14>>(); }
 TEST(Volumes, Kdop18FitAndTests) { checkVolume<KDop<18>>(); }
 TEST(Volumes, Kdop26FitAndTests) { checkVolume<KDop<26>>(); }
+TEST(Volumes, SweptSphereFitAndTests) { checkVolume<Ssv>(); }
 
 TEST(Volumes, SphereFitIsNearMinimal)
 {

@@ -12,10 +12,10 @@ using namespace hcd;
 TEST(CheckerCatalogue, BuiltInListsTheCoreCheckersWithDescriptions)
 {
     const CheckerCatalogue catalogue = CheckerCatalogue::builtIn();
-    const std::vector<std::string> expected = {"obb",    "ellipsoid", "hybrid",     "hybrid-ellipsoid-first",
-                                               "sphere", "aabb",      "aabb-fixed", "kdop14",
-                                               "kdop18", "kdop26",    "auto",       "bruteforce",
-                                               "lp"};
+    const std::vector<std::string> expected = {"obb",    "ellipsoid",  "hybrid",     "hybrid-ellipsoid-first",
+                                               "sphere", "aabb",       "aabb-fixed", "kdop14",
+                                               "kdop18", "kdop26",     "ssv",        "octree",
+                                               "auto",   "bruteforce", "lp"};
     EXPECT_EQ(catalogue.names(), expected);
     for (const CheckerEntry &e : catalogue.entries())
     {

@@ -15,6 +15,7 @@
 #include "hybridcd/bv/obb.h"
 #include "hybridcd/bv/principal_axis.h"
 #include "hybridcd/bv/sphere.h"
+#include "hybridcd/bv/swept_sphere.h"
 #include "hybridcd/bvh/export_mesh.h"
 
 #include <algorithm>
@@ -233,5 +234,44 @@ struct VolumeTraits<KDop<K>>
         return kdopDistanceLowerBound(a, b, tolerance);
     }
     static void appendMesh(const Volume &d, ExportMesh &mesh) { appendPolygons(mesh, d.faces()); }
+};
+
+/// Swept-sphere volumes: each node a point, line or rectangle swept sphere (whichever is smallest).
+template <>
+struct VolumeTraits<Ssv>
+{
+    static constexpr const char *kName = "swept-sphere";
+    static Ssv fit(const std::vector<Vec3> &points) { return Ssv::fit(points); }
+    static Vec3 splitAxis(const Ssv &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    static const Vec3 &center(const Ssv &s) { return s.center; }
+    static double radius(const Ssv &s)
+    {
+        return (std::hypot(s.halfLength[0], s.halfLength[1]) + s.radius) * (1.0 + 1e-12);
+    }
+    static double volume(const Ssv &s) { return s.volume(); }
+    static Ssv transformed(const Ssv &s, const RigidTransform &pose) { return s.transformed(pose); }
+    static bool overlap(const Ssv &a, const Ssv &b, double tolerance) { return ssvsOverlap(a, b, tolerance); }
+    static double lowerBound(const Ssv &a, const Ssv &b, double tolerance)
+    {
+        return ssvDistanceLowerBound(a, b, tolerance);
+    }
+    /// Drawn as its core's corners' balls and the box around the core thickened by the radius.
+    static void appendMesh(const Ssv &s, ExportMesh &mesh)
+    {
+        if (s.kind == Ssv::Kind::Point)
+        {
+            appendMappedSphere(mesh, s.center, s.radius * Mat3::Identity());
+            return;
+        }
+        for (const double a : {-1.0, 1.0})
+            for (const double b : {-1.0, 1.0})
+            {
+                appendMappedSphere(mesh, s.center + s.axes * Vec3(a * s.halfLength[0], b * s.halfLength[1], 0.0),
+                                   s.radius * Mat3::Identity());
+                if (s.kind == Ssv::Kind::Segment)
+                    break;
+            }
+        appendMappedCube(mesh, s.center, s.axes * Vec3(s.halfLength[0], s.halfLength[1], s.radius).asDiagonal());
+    }
 };
 }  // namespace hcd
