@@ -36,7 +36,8 @@ attempts_for() {
     alpha-1.0) printf '%s\n' "rrtconnect 300" "kpiece 300" ;;
     bugtrap) printf '%s\n' "rrtconnect 120" "kpiece 120" "bkpiece 120" ;;
     BugTrap_dcar) printf '%s\n' "rrt 120 --goal-threshold 0.5 --propagation-step 0.1 --control-steps 1,10" "sst 120" ;;
-    Maze_kcar | corridor_kcar | quadrotor_window) printf '%s\n' "rrt 60" "kpiece 60" ;;
+    quadrotor_window) printf '%s\n' "kpiece 60 --goal-threshold 1.5" "rrt 60 --goal-threshold 1.5" ;;
+    Maze_kcar | corridor_kcar) printf '%s\n' "rrt 60" "kpiece 60" ;;
     *) printf '%s\n' "rrtconnect 30" "kpiece 30" ;;
   esac
 }
