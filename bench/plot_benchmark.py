@@ -10,7 +10,8 @@ colour tells the configuration). Written as NAME_benchmark.png and NAME_benchmar
 
 Experiments of the same name (separate logs of one problem) are drawn together. Path length is that
 of the exact solutions (OMPL's "simplified solution length" when the log has it, else "solution
-length"); solve time and collision checks count every run. --print writes the plotted numbers, one
+length"; for control planners OMPL records the path's duration in seconds there); solve time and
+collision checks count every run. --print writes the plotted numbers, one
 tab-separated line per experiment and planner[configuration]: experiment, planner, configuration,
 runs, solved runs, success rate (%), median solve time (s), median path length, median collision
 checks ("nan" where there is nothing to take the median of). Needs Debian's python3-matplotlib.
@@ -29,8 +30,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def split_name(name):
-    """ "geometric_RRTConnect[obb+continuous]" -> ("RRTConnect", "obb+continuous")."""
-    name = name.replace("geometric_", "", 1)
+    """ "geometric_RRTConnect[obb+continuous]" -> ("RRTConnect", "obb+continuous"); the same for
+    control planners ("control_KPIECE1[obb+discrete(0.2s)]")."""
+    for prefix in ("geometric_", "control_"):
+        if name.startswith(prefix):
+            name = name[len(prefix):]
+            break
     if name.endswith("]") and "[" in name:
         at = name.index("[")
         return name[:at], name[at + 1:-1]

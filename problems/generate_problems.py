@@ -10,6 +10,10 @@ triangles only, every box closed and outward-oriented):
   corridor_2d SE(2): a 4 x 2 car-like rectangle drives through a zig-zag
               corridor of four rooms joined by alternating gaps.
 
+and two kinodynamic ones on the same kind of meshes: corridor_kcar (the
+corridor driven by OMPL.app's kinematic car) and quadrotor_window (a small
+quadrotor flying through the window of a wall standing on an open floor).
+
 Why: the project needs benchmark problems whose meshes it generated itself
 (OMPL.app's meshes are not redistributed here), and that are small, exact
 and easy to reason about when checking collision results.
@@ -238,6 +242,56 @@ CORRIDOR_KCAR_CFG = [
 ]
 
 
+# --------------------------------------------------------------------------
+# quadrotor_window: an open floor (no walls around, no ceiling) with one wall standing across it, a
+# 2 x 1.5 window in the wall, and OMPL.app's quadrotor (velocities within 1 m/s, thrust 5 to 15 N
+# for 1 kg) flying from one side to the other. OMPL.app's quadrotor pushes along minus its body z
+# axis, so it hovers upside down: start and goal are turned half a turn about x, where a thrust of
+# g holds it still (upright, its thrust and gravity both point down and it falls at once).
+
+QUADROTOR_WINDOW_ENV = [
+    ((-4, -4, -0.2), (4, 4, 0)),        # floor
+    ((-0.1, -4, 0), (0.1, -1, 4)),      # wall, left of the window
+    ((-0.1, 1, 0), (0.1, 4, 4)),        # wall, right of the window
+    ((-0.1, -1, 0), (0.1, 1, 1)),       # wall, below the window
+    ((-0.1, -1, 2.5), (0.1, 1, 4)),     # wall, above the window
+]
+
+# A cross of two 0.6 x 0.08 x 0.06 arms over a 0.16 x 0.16 x 0.1 body: 0.6 across, 0.1 high.
+QUADROTOR_WINDOW_ROBOT = centred([
+    ((-0.3, -0.04, -0.03), (0.3, 0.04, 0.03)),
+    ((-0.04, -0.3, -0.03), (0.04, 0.3, 0.03)),
+    ((-0.08, -0.08, -0.05), (0.08, 0.08, 0.05)),
+])
+
+QUADROTOR_WINDOW_CFG = [
+    ("name", "quadrotor_window"),
+    ("robot", "quadrotor_window_robot.obj"),
+    ("world", "quadrotor_window_env.obj"),
+    ("control", "quadrotor"),
+    ("start.x", "-2.0"),
+    ("start.y", "0.0"),
+    ("start.z", "1.75"),
+    ("start.theta", repr(math.pi)),
+    ("start.axis.x", "1.0"),
+    ("start.axis.y", "0.0"),
+    ("start.axis.z", "0.0"),
+    ("goal.x", "2.0"),
+    ("goal.y", "0.0"),
+    ("goal.z", "1.75"),
+    ("goal.theta", repr(math.pi)),
+    ("goal.axis.x", "1.0"),
+    ("goal.axis.y", "0.0"),
+    ("goal.axis.z", "0.0"),
+    ("volume.min.x", "-3.5"),
+    ("volume.min.y", "-3.5"),
+    ("volume.min.z", "0.3"),
+    ("volume.max.x", "3.5"),
+    ("volume.max.y", "3.5"),
+    ("volume.max.z", "3.5"),
+]
+
+
 def main():
     write_obj("window_3d_env.obj", WINDOW_3D_ENV,
               ["window_3d world: closed 100x60x40 room split by a wall with a 20x20 window"])
@@ -250,6 +304,11 @@ def main():
               ["corridor_2d robot: 4x2 rectangle extruded over z in [-0.5,0.5]"])
     write_cfg("corridor_2d.cfg", CORRIDOR_2D_CFG)
     write_cfg("corridor_kcar.cfg", CORRIDOR_KCAR_CFG, planners=("kpiece", "rrt", "sst"), time_limit="20.0")
+    write_obj("quadrotor_window_env.obj", QUADROTOR_WINDOW_ENV,
+              ["quadrotor_window world: an 8 x 8 floor and a wall across it with a 2 x 1.5 window"])
+    write_obj("quadrotor_window_robot.obj", QUADROTOR_WINDOW_ROBOT,
+              ["quadrotor_window robot: a cross of two 0.6 x 0.08 x 0.06 arms over a 0.16 x 0.16 x 0.1 body"])
+    write_cfg("quadrotor_window.cfg", QUADROTOR_WINDOW_CFG, planners=("kpiece", "rrt", "sst"), time_limit="20.0")
 
 
 if __name__ == "__main__":

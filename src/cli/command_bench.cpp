@@ -7,6 +7,7 @@
 
 #include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
+#include "hybridcd/ompl/control_problem.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_catalogue.h"
@@ -14,8 +15,11 @@
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 namespace hcd::cli
@@ -77,16 +81,25 @@ std::string shortNumber(double value)
     return s.str();
 }
 
+// What "discrete" means in a label: OMPL's validity-checking resolution for geometric problems
+// ("discrete(0.01)"), the propagation step in seconds for kinodynamic ones ("discrete(0.2s)": states
+// checked at the ends of propagation steps only, as OMPL.app does).
+std::string discreteLabel(bool kinodynamic)
+{
+    return kinodynamic ? "discrete(" + shortNumber(ControlSettings{}.propagationStep) + "s)"
+                       : "discrete(" + shortNumber(kResolution) + ")";
+}
+
 // The configuration's name in the log: the checker, its options when they change its answers, and
 // the motion check with its resolution, so that merged logs never mix two set-ups under one name.
-std::string labelOf(const CheckerEntry &entry, const CheckerOptions &options, MotionCheck motion)
+std::string labelOf(const CheckerEntry &entry, const CheckerOptions &options, MotionCheck motion, bool kinodynamic)
 {
     std::string label = entry.name;
     if (!entry.keepsOwnSemantics && options.semantics == ContactSemantics::SurfaceOnly)
         label += "-surface";
     if (options.approximateTolerance)
         label += "-approx(" + shortNumber(*options.approximateTolerance) + ")";
-    return label + (motion == MotionCheck::Continuous ? "+continuous" : "+discrete(" + shortNumber(kResolution) + ")");
+    return label + (motion == MotionCheck::Continuous ? "+continuous" : "+" + discreteLabel(kinodynamic));
 }
 
 std::vector<MotionCheck> motionsOf(const CommandLine &cl)
@@ -108,8 +121,9 @@ std::vector<MotionCheck> motionsOf(const CommandLine &cl)
 }
 
 // The checker/motion pairs to compare: every --checker with every --motion, then OMPL.app's own
-// set-up (FCL state checks, OMPL's DiscreteMotionValidator) unless --baseline none or already listed.
-std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCatalogue &checkers)
+// set-up (FCL state checks, OMPL's DiscreteMotionValidator; for kinodynamic problems, checks at the
+// propagation steps only) unless --baseline none or already listed.
+std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCatalogue &checkers, bool kinodynamic)
 {
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::vector<std::string> names = checkerNamesOf(cl, checkers, options);
@@ -122,7 +136,7 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
     for (const std::string &name : names)
         for (const MotionCheck motion : motions)
         {
-            const std::string label = labelOf(*checkers.find(name), options, motion);
+            const std::string label = labelOf(*checkers.find(name), options, motion, kinodynamic);
             for (const CheckerSlot &s : slots)
                 if (s.label == label)
                     throw UsageError("the configuration " + label + " is given twice");
@@ -133,7 +147,7 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
         const CheckerEntry *fcl = checkers.find("fcl");
         if (!fcl)
             throw UsageError("--baseline omplapp needs the fcl checker, which this build lacks; use --baseline none");
-        const std::string label = labelOf(*fcl, {}, MotionCheck::Discrete);
+        const std::string label = labelOf(*fcl, {}, MotionCheck::Discrete, kinodynamic);
         bool listed = false;
         for (const CheckerSlot &s : slots)
             listed = listed || s.label == label;
@@ -147,7 +161,8 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
 void declareBench(CommandLine &cl)
 {
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format); its [benchmark] section gives the defaults")
-        .option("planner", "NAME[,NAME...]", "the planners (default: the .cfg's, else rrtconnect)")
+        .option("planner", "NAME[,NAME...]",
+                "the planners (default: the .cfg's, else rrtconnect, or kpiece for a kinodynamic problem)")
         .option("runs", "N", "runs per planner and configuration (default: the .cfg's run_count)")
         .option("time", "SECONDS", "time limit per run (default: the .cfg's time_limit)")
         .option("memory", "MB", "memory limit per run (default: the .cfg's mem_limit)")
@@ -158,6 +173,8 @@ void declareBench(CommandLine &cl)
         .option("baseline", "omplapp|none",
                 "also run OMPL.app's set-up, fcl+discrete(0.01): FCL and OMPL's DiscreteMotionValidator "
                 "(default omplapp)")
+        .option("goal-threshold", "D",
+                "kinodynamic problems: distance to the goal state that counts (default 1, OMPL.app's)")
         .option("seed", "N",
                 "seed OMPL's random numbers (1 to 4294967295); shards derive theirs from it (default 1 with --shard)");
     addCheckerOptions(cl, true);
@@ -167,10 +184,14 @@ configuration is named in the log after its checker and motion check, e.g.
 RRTConnect[obb+continuous], RRTConnect[obb+discrete(0.01)], RRTConnect[fcl+discrete(0.01)]
 (OMPL.app: FCL, OMPL's DiscreteMotionValidator at resolution 0.01).
 Writes an OMPL benchmark log, readable by ompl_benchmark_statistics.
+A kinodynamic problem (control = ...) runs OMPL's control planners (kpiece by default, rrt, sst, est,
+pdst) on OMPL.app's vehicle: continuous certifies whole trajectories, discrete(0.2s) checks the
+states at the 0.2 s propagation steps only, as OMPL.app does; its baseline is fcl+discrete(0.2s).
 Examples:
   hybridcd bench problems/window_3d.cfg --runs 20 --time 10
   hybridcd bench problems/window_3d.cfg --checker obb,hybrid --motion continuous,discrete --runs 20
   hybridcd bench problems/window_3d.cfg --runs 100 --shard 0/4 --seed 7 --out window.shard0.log
+  hybridcd bench problems/corridor_kcar.cfg --planner kpiece,rrt --runs 10 --time 20
 Shard I of N (N > 1) seeds OMPL with SplitMix64(SEED * 2^32 + I) folded into 1..2^32-1, printed
 and written in the log; bench/merge_shards.py merges the shards' logs into one experiment.
 )");
@@ -186,14 +207,15 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::uint_fast32_t seed = shardSeed(baseSeed, shardIndex, shardCount);
     if (seeded)
         ompl::RNG::setSeed(seed);
-    std::vector<CheckerSlot> slots = configurationsOf(cl, checkers);
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
-    if (!cfg.control.empty())
-        throw InputError(cfg.path, cfg.controlLine,
-                         "control = " + cfg.control +
-                             ": `bench` runs geometric planners only; plan this kinodynamic problem with `hybridcd "
-                             "solve` (bench/README.md has its measurements)");
+    // A kinodynamic problem (control = ...) is benchmarked with OMPL's control planners.
+    const bool kinodynamic = !cfg.control.empty();
+    std::vector<CheckerSlot> slots = configurationsOf(cl, checkers, kinodynamic);
+    if (!kinodynamic && cl.has("goal-threshold"))
+        throw UsageError("--goal-threshold is for kinodynamic problems (a .cfg with control = ...)");
+    ControlSettings controlSettings;
+    controlSettings.goalThreshold = cl.positiveNumber("goal-threshold", controlSettings.goalThreshold);
 
     const long long totalRuns = cl.positiveInteger("runs", cfg.benchmark.runCount);
     // Shard I of N does the runs whose index is I modulo N, so shards never overlap and together
@@ -217,22 +239,54 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     else
         requests = cfg.planners;
     if (requests.empty())
-        requests.push_back({"rrtconnect", "", {}});
+        requests.push_back({kinodynamic ? "kpiece" : "rrtconnect", "", {}});
 
     for (CheckerSlot &slot : slots)
         slot.instance = checkers.make(slot.checker, problem.scene, slot.options);
 
-    PlanningProblem planning = makePlanningProblem(problem, slots.front().instance, slots.front().motion);
-    planning.setup->getSpaceInformation()->setStateValidityCheckingResolution(kResolution);
+    // One SimpleSetup for every configuration; `install` points it at a configuration's checker and
+    // motion check, `plannerOf` makes a planner on it.
+    std::optional<PlanningProblem> geometric;
+    std::optional<ControlProblem> control;
+    std::unique_ptr<ompl::tools::Benchmark> benchmarkPtr;
+    std::function<std::shared_ptr<StateValidityChecker>(const CheckerSlot &)> install;
+    std::function<ompl::base::PlannerPtr(const PlannerRequest &)> plannerOf;
+    if (kinodynamic)
+    {
+        controlSettings.motion = slots.front().motion;
+        control = makeControlProblem(problem, slots.front().instance, controlSettings);
+        install = [&](const CheckerSlot &slot) {
+            return installControlChecker(*control, problem, slot.instance, slot.motion);
+        };
+        plannerOf = [&](const PlannerRequest &request) {
+            return makeControlPlanner(request, control->setup->getSpaceInformation());
+        };
+        benchmarkPtr = std::make_unique<ompl::tools::Benchmark>(*control->setup, cfg.name);
+    }
+    else
+    {
+        geometric = makePlanningProblem(problem, slots.front().instance, slots.front().motion);
+        geometric->setup->getSpaceInformation()->setStateValidityCheckingResolution(kResolution);
+        install = [&](const CheckerSlot &slot) {
+            return installChecker(*geometric, problem, slot.instance, slot.motion);
+        };
+        plannerOf = [&](const PlannerRequest &request) {
+            return makePlanner(request, geometric->setup->getSpaceInformation());
+        };
+        benchmarkPtr = std::make_unique<ompl::tools::Benchmark>(*geometric->setup, cfg.name);
+    }
     // Every configuration must see a free start and goal: FCL calls a robot inside a closed
     // obstacle free, the solid checkers do not.
     for (CheckerSlot &slot : slots)
     {
-        slot.validity = installChecker(planning, problem, slot.instance, slot.motion);
-        requireCollisionFreeStartAndGoal(problem, planning);
+        slot.validity = install(slot);
+        if (kinodynamic)
+            requireCollisionFreeStartAndGoal(problem, control->poseSpace, *control->poseValidity);
+        else
+            requireCollisionFreeStartAndGoal(problem, *geometric);
     }
 
-    ompl::tools::Benchmark benchmark(*planning.setup, cfg.name);
+    ompl::tools::Benchmark &benchmark = *benchmarkPtr;
     std::map<const ompl::base::Planner *, std::size_t> slotOf;
     std::string labels;
     for (std::size_t c = 0; c < slots.size(); ++c)
@@ -240,7 +294,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         labels += (c ? "," : "") + slots[c].label;
         for (const PlannerRequest &request : requests)
         {
-            ompl::base::PlannerPtr planner = makePlanner(request, planning.setup->getSpaceInformation());
+            ompl::base::PlannerPtr planner = plannerOf(request);
             // The configuration in the name keeps set-ups apart when logs are merged into one database.
             planner->setName(planner->getName() + "[" + slots[c].label + "]");
             slotOf[planner.get()] = c;
@@ -249,7 +303,13 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     }
     benchmark.addExperimentParameter("configurations", "VARCHAR(512)", labels);
     benchmark.addExperimentParameter("baseline", "VARCHAR(64)",
-                                     cl.text("baseline", "omplapp") == "omplapp" ? "fcl+discrete(0.01)" : "none");
+                                     cl.text("baseline", "omplapp") == "omplapp" ? "fcl+" + discreteLabel(kinodynamic)
+                                                                                 : "none");
+    if (kinodynamic)
+    {
+        benchmark.addExperimentParameter("control", "VARCHAR(32)", cfg.control);
+        benchmark.addExperimentParameter("goal_threshold", "REAL", shortNumber(controlSettings.goalThreshold));
+    }
     benchmark.addExperimentParameter("shard_index", "INTEGER", std::to_string(shardIndex));
     benchmark.addExperimentParameter("shard_count", "INTEGER", std::to_string(shardCount));
     benchmark.addExperimentParameter("total_runs", "INTEGER", std::to_string(totalRuns));
@@ -268,7 +328,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) {
         // Point the space at this configuration's checker and motion validator, and zero its counters.
         CheckerSlot &slot = slots[slotOf.at(planner.get())];
-        slot.validity = installChecker(planning, problem, slot.instance, slot.motion);
+        slot.validity = install(slot);
         slot.validity->resetCounters();
     });
     benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &run) {

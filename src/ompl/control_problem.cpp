@@ -88,6 +88,23 @@ bool ControlValidityChecker::isValid(const ob::State *state) const
     return si_->satisfiesBounds(state) && poseValidity_->collisionFree(poseComponent(model_, state));
 }
 
+std::shared_ptr<StateValidityChecker> installControlChecker(ControlProblem &planning, const LoadedProblem &problem,
+                                                            std::shared_ptr<const CollisionChecker> checker,
+                                                            MotionCheck motion)
+{
+    const oc::SpaceInformationPtr &si = planning.setup->getSpaceInformation();
+    planning.poseValidity = std::make_shared<StateValidityChecker>(planning.poseSpace, std::move(checker),
+                                                                   problem.scene, problem.config.planar);
+    planning.poseSpace->setStateValidityChecker(planning.poseValidity);
+    si->setStateValidityChecker(std::make_shared<ControlValidityChecker>(si, planning.model, planning.poseValidity));
+    planning.settings.motion = motion;
+    planning.propagator = std::make_shared<VehiclePropagator>(
+        si, planning.model, planning.settings.integrationStep,
+        motion == MotionCheck::Continuous ? planning.poseValidity : nullptr, problem.robot.mesh->radiusAboutOrigin());
+    si->setStatePropagator(planning.propagator);
+    return planning.poseValidity;
+}
+
 ControlProblem makeControlProblem(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker,
                                   const ControlSettings &settings)
 {
@@ -118,16 +135,8 @@ ControlProblem makeControlProblem(const LoadedProblem &problem, std::shared_ptr<
     const ob::StateSpacePtr poseSubspace =
         *model == VehicleModel::KinematicCar ? space : space->as<ob::CompoundStateSpace>()->getSubspace(0);
     out.poseSpace = std::make_shared<ob::SpaceInformation>(poseSubspace);
-    out.poseValidity =
-        std::make_shared<StateValidityChecker>(out.poseSpace, std::move(checker), problem.scene, cfg.planar);
-    out.poseSpace->setStateValidityChecker(out.poseValidity);
+    installControlChecker(out, problem, std::move(checker), settings.motion);
     out.poseSpace->setup();
-
-    si->setStateValidityChecker(std::make_shared<ControlValidityChecker>(si, *model, out.poseValidity));
-    out.propagator = std::make_shared<VehiclePropagator>(
-        si, *model, settings.integrationStep, settings.motion == MotionCheck::Continuous ? out.poseValidity : nullptr,
-        problem.robot.mesh->radiusAboutOrigin());
-    si->setStatePropagator(out.propagator);
     si->setPropagationStepSize(settings.propagationStep);
     si->setMinMaxControlDuration(settings.minControlSteps, settings.maxControlSteps);
     space->registerDefaultProjection(std::make_shared<PositionProjection>(space, *model, positionBounds));

@@ -233,6 +233,56 @@ TEST(Bench, ShardsUnderGnuParallelAndSlurmMergeIntoTheUnshardedExperiment)
     }
 }
 
+TEST(Bench, KinodynamicProblemsRunControlPlannersUnderEveryConfiguration)
+{
+    if (!haveStatisticsScript())
+        HYBRIDCD_SKIP_OR_FAIL_IN_CI("ompl_benchmark_statistics not installed (package ompl-demos)");
+    const std::string dir = tempDir() + "/kinodynamic";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string base =
+        std::string(HYBRIDCD_CLI) + " bench " + hcd::test::sourcePath("problems/corridor_kcar.cfg");
+    const Output run = shell(base + " --planner kpiece,rrt --runs 3 --time 1 --seed 3 --out " + dir + "/k.log");
+    ASSERT_EQ(run.status, 0) << run.output;
+    // The log names control planners, every one under hybridcd's set-up and OMPL.app's (FCL, states
+    // checked at the 0.2 s propagation steps only).
+    EXPECT_EQ(
+        shell("awk '/^[0-9]+ planners$/{n=$1; next} n>0 && /^control_/{printf \"%s;\", $0; n--}' " + dir + "/k.log")
+            .output,
+        "control_KPIECE1[obb+continuous];control_RRT[obb+continuous];control_KPIECE1[fcl+discrete(0.2s)];"
+        "control_RRT[fcl+discrete(0.2s)];");
+    EXPECT_EQ(shell("grep -c '^control VARCHAR(32) = kinematic_car$' " + dir + "/k.log").output, "1\n");
+    ASSERT_EQ(shell("ompl_benchmark_statistics " + dir + "/k.log -d " + dir + "/k.db").status, 0);
+    EXPECT_EQ(experimentsOf(dir + "/k.db"),
+              "corridor_kcar|3\n"
+              "control_KPIECE1[fcl+discrete(0.2s)]|3|0,1,2;control_KPIECE1[obb+continuous]|3|0,1,2;"
+              "control_RRT[fcl+discrete(0.2s)]|3|0,1,2;control_RRT[obb+continuous]|3|0,1,2\n");
+    // Every run counted its collision checks, and the continuous runs certified trajectories with
+    // hybridcd's checker while the baseline's went through FCL.
+    const std::string py = "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); "
+                           "print(';'.join('%s|%d|%s' % r for r in c.execute('select p.name, min(r.collision_checks > "
+                           "0), min(r.checker) from runs r join plannerConfigs p on r.plannerid = p.id group by p.name "
+                           "order by p.name')))";
+    EXPECT_EQ(shell("python3 -c \"" + py + "\" " + dir + "/k.db").output,
+              "control_KPIECE1[fcl+discrete(0.2s)]|1|fcl;control_KPIECE1[obb+continuous]|1|obb;"
+              "control_RRT[fcl+discrete(0.2s)]|1|fcl;control_RRT[obb+continuous]|1|obb\n");
+    // The plot script reads control planners' names as it reads geometric ones.
+    if (shell("/usr/bin/python3 -c 'import matplotlib'").status == 0)
+    {
+        const Output plot = shell("/usr/bin/python3 " + hcd::test::sourcePath("bench/plot_benchmark.py") + " " + dir +
+                                  "/k.db " + dir + "/plots --print 2>/dev/null");
+        ASSERT_EQ(plot.status, 0) << plot.output;
+        EXPECT_NE(plot.output.find("corridor_kcar\tKPIECE1\tobb+continuous\t3\t"), std::string::npos) << plot.output;
+        EXPECT_NE(plot.output.find("corridor_kcar\tRRT\tfcl+discrete(0.2s)\t3\t"), std::string::npos) << plot.output;
+        EXPECT_TRUE(std::filesystem::exists(dir + "/plots/corridor_kcar_benchmark.png"));
+    }
+    // A geometric planner is refused before anything runs, and no log is written.
+    const Output bad = shell(base + " --planner rrtconnect --runs 1 --time 1 --out " + dir + "/bad.log");
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_NE(bad.output.find("unknown control planner 'rrtconnect'"), std::string::npos) << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bad.log"));
+}
+
 namespace
 {
 struct PlotRow

@@ -430,6 +430,33 @@ TEST(ControlProblem, OmplAppMazeKinematicCarSolves)
     expectPathValid(planning, problem, planning.setup->getSolutionPath());
 }
 
+TEST(ControlProblem, QuadrotorFliesThroughTheWindowAndThePathHolds)
+{
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    GTEST_SKIP() << "planning the quadrotor within a time limit is a Release-build test";
+#endif
+    // The project's quadrotor problem, with OMPL.app's settings but a goal distance of 1.5 (the
+    // distance adds the position's, the orientation's and 0.3 x the velocities'), solved exactly by
+    // control planners and re-propagated in 1 ms steps under brute force.
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/quadrotor_window.cfg"));
+    ControlSettings settings;
+    settings.goalThreshold = 1.5;
+    for (const char *planner : {"kpiece", "rrt"})
+    {
+        ompl::RNG::setSeed(std::uint_fast32_t(test::seed()));
+        ControlProblem planning = makeControlProblem(problem, makeChecker("obb", problem.scene), settings);
+        EXPECT_EQ(planning.model, VehicleModel::Quadrotor);
+        planning.setup->setPlanner(makeControlPlanner({planner, "", {}}, planning.setup->getSpaceInformation()));
+        ASSERT_EQ(planning.setup->solve(60.0), ompl::base::PlannerStatus::EXACT_SOLUTION) << planner;
+        const ompl::control::PathControl &path = planning.setup->getSolutionPath();
+        expectPathValid(planning, problem, path);
+        // It went through the window: the wall stands at x in [-0.1, 0.1] between start and goal.
+        const auto pose = [&](std::size_t i) { return vehicleCoordinates(VehicleModel::Quadrotor, path.getState(i)); };
+        EXPECT_LT(pose(0)[0], -1.5);
+        EXPECT_GT(pose(path.getStateCount() - 1)[0], 0.4);  // the robot reaches 0.3 from its centre
+    }
+}
+
 TEST(ControlProblem, DynamicCarStartAndGoalCarryZeroVelocity)
 {
     LoadedProblem problem = thinWallProblem();

@@ -63,4 +63,12 @@ struct ControlProblem
 /// for the caller to set. Throws std::invalid_argument when the config names no known model.
 ControlProblem makeControlProblem(const LoadedProblem &problem, std::shared_ptr<const CollisionChecker> checker,
                                   const ControlSettings &settings = {});
+
+/// Makes `checker` the one `planning` uses, with `motion` for the trajectories: a new pose
+/// checker (returned, also stored in planning.poseValidity), validity checker and propagator
+/// installed in its SpaceInformation; planning.settings.motion becomes `motion`. Used to switch
+/// checkers between benchmark runs (planners read both through the SpaceInformation).
+std::shared_ptr<StateValidityChecker> installControlChecker(ControlProblem &planning, const LoadedProblem &problem,
+                                                            std::shared_ptr<const CollisionChecker> checker,
+                                                            MotionCheck motion);
 }  // namespace hcd
