@@ -8,7 +8,7 @@
 # (-DHYBRIDCD_BUILD_BENCH=ON, with FCL).
 #   bash bench/hierarchy_table.sh [--states N] [PROBLEM ...]
 # PROBLEM is a .cfg path or a name under OMPL.app's resources such as 3D/cubicles; by default the
-# ten problems of bench/README.md, 2000 states each.
+# ten problems of bench/README.md and the project's three organic ones, 2000 states each.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 resources=${HYBRIDCD_OMPLAPP_RESOURCES:-$root/../shared/omplapp-resources}
@@ -25,6 +25,8 @@ done
 if [ ${#problems[@]} -eq 0 ]; then
   problems=(3D/cubicles 3D/Easy 3D/Twistycool 3D/alpha-1.5 3D/Apartment 3D/Home 3D/bugtrap 3D/Abstract
             2D/Maze_planar 2D/BugTrap_planar)
+  # The project's organic problems (smooth closed meshes, problems/README.md).
+  problems+=("$root/problems/bone_3d.cfg" "$root/problems/ribcage_3d.cfg" "$root/problems/bones_2d.cfg")
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
