@@ -223,4 +223,5 @@ HCD_VOLUME_BENCHMARKS(FixedAabb, "aabb-fixed")
 HCD_VOLUME_BENCHMARKS(KDop<14>, "kdop14")
 HCD_VOLUME_BENCHMARKS(KDop<18>, "kdop18")
 HCD_VOLUME_BENCHMARKS(KDop<26>, "kdop26")
+HCD_VOLUME_BENCHMARKS(MedialSphere, "medial")
 }  // namespace

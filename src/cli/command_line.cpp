@@ -267,7 +267,8 @@ void addCheckerOptions(CommandLine &cl, bool several)
               several ? "the checkers to use, comma-separated (default obb; listed below)"
                       : "the collision checker (default obb; listed below)")
         .flag("surface-only", "treat meshes as surfaces only, as FCL does (default: closed components are solids)")
-        .option("mode", "exact|approximate", "exact (default), or approximate with --tolerance (the lp checker)")
+        .option("mode", "exact|approximate",
+                "exact (default), or approximate with --tolerance (the lp and medial checkers)")
         .option("tolerance", "T", "approximate mode: contact may be reported up to distance T apart (positive)")
         .option("max-triangles", "N", "refuse meshes of more than N triangles (default 2000000)");
 }

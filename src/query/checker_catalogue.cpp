@@ -52,6 +52,14 @@ CheckerCatalogue CheckerCatalogue::builtIn()
                return std::make_unique<ObbTreeChecker>(s, "lp", 1, stage);
            },
            false, true});
+    // Medial-axis spheres (seed section 3.2, eq. 5): leaves of up to 8 triangles.
+    c.add({"medial",
+           "sphere trees with the spheres on the medial axis of closed solids; exact, or approximate with a tolerance",
+           [](const CollisionScene &s, const CheckerOptions &o) {
+               return std::make_unique<VolumeTreeChecker<MedialSphere>>(s, "medial", 8, std::nullopt,
+                                                                        o.approximateTolerance);
+           },
+           false, true});
     return c;
 }
 

@@ -14,7 +14,8 @@ TEST(CheckerCatalogue, BuiltInListsTheCoreCheckersWithDescriptions)
     const CheckerCatalogue catalogue = CheckerCatalogue::builtIn();
     const std::vector<std::string> expected = {"obb",    "ellipsoid", "hybrid",     "hybrid-ellipsoid-first",
                                                "sphere", "aabb",      "aabb-fixed", "kdop14",
-                                               "kdop18", "kdop26",    "bruteforce", "lp"};
+                                               "kdop18", "kdop26",    "bruteforce", "lp",
+                                               "medial"};
     EXPECT_EQ(catalogue.names(), expected);
     for (const CheckerEntry &e : catalogue.entries())
     {
@@ -53,9 +54,10 @@ TEST(CheckerCatalogue, ApproximateModeOnlyWhereSupported)
     CheckerOptions approximate;
     approximate.approximateTolerance = 0.01;
     EXPECT_NO_THROW(catalogue.check("lp", approximate));
+    EXPECT_NO_THROW(catalogue.check("medial", approximate));
     for (const std::string &name : catalogue.names())
     {
-        if (name == "lp")
+        if (name == "lp" || name == "medial")
             continue;
         try
         {
@@ -64,7 +66,7 @@ TEST(CheckerCatalogue, ApproximateModeOnlyWhereSupported)
         }
         catch (const std::invalid_argument &e)
         {
-            EXPECT_NE(std::string(e.what()).find("has no approximate mode (checkers that have one: lp)"),
+            EXPECT_NE(std::string(e.what()).find("has no approximate mode (checkers that have one: lp, medial)"),
                       std::string::npos)
                 << e.what();
         }

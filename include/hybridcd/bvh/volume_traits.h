@@ -11,6 +11,7 @@
 #include "hybridcd/bv/fixed_aabb.h"
 #include "hybridcd/bv/hybrid_volume.h"
 #include "hybridcd/bv/kdop.h"
+#include "hybridcd/bv/medial_sphere.h"
 #include "hybridcd/bv/minimum_volume_ellipsoid.h"
 #include "hybridcd/bv/obb.h"
 #include "hybridcd/bv/principal_axis.h"
@@ -156,6 +157,32 @@ struct VolumeTraits<Sphere>
     static void appendMesh(const Sphere &s, ExportMesh &mesh)
     {
         appendMappedSphere(mesh, s.center, s.radius * Mat3::Identity());
+    }
+};
+
+/// Spheres placed on the medial axis (bvh/medial_axis.h moves them there after the build); fitted
+/// like `Sphere` until then.
+template <>
+struct VolumeTraits<MedialSphere>
+{
+    static constexpr const char *kName = "medial sphere";
+    static MedialSphere fit(const std::vector<Vec3> &points) { return {Sphere::fit(points), 0.0}; }
+    static Vec3 splitAxis(const MedialSphere &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    static const Vec3 &center(const MedialSphere &s) { return s.ball.center; }
+    static double radius(const MedialSphere &s) { return s.ball.radius; }
+    static double volume(const MedialSphere &s) { return s.ball.volume(); }
+    static MedialSphere transformed(const MedialSphere &s, const RigidTransform &pose) { return s.transformed(pose); }
+    static bool overlap(const MedialSphere &a, const MedialSphere &b, double tolerance)
+    {
+        return spheresOverlap(a.ball, b.ball, tolerance);
+    }
+    static double lowerBound(const MedialSphere &a, const MedialSphere &b, double tolerance)
+    {
+        return sphereDistanceLowerBound(a.ball, b.ball, tolerance);
+    }
+    static void appendMesh(const MedialSphere &s, ExportMesh &mesh)
+    {
+        appendMappedSphere(mesh, s.ball.center, s.ball.radius * Mat3::Identity());
     }
 };
 
