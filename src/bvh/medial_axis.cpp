@@ -14,9 +14,9 @@ struct MedialAxisSampler::Impl
 {
     std::shared_ptr<const TriangleMesh> mesh;
     SolidQuery solids;
-    VolumeTree<Aabb> boxes;                   ///< for nearest-surface-point queries
-    std::vector<std::int32_t> componentOf;    ///< per triangle: its component if closed, else -1
-    std::vector<double> componentDiagonal;    ///< per component: its bounding-box diagonal
+    VolumeTree<Aabb> boxes;                 ///< for nearest-surface-point queries
+    std::vector<std::int32_t> componentOf;  ///< per triangle: its component if closed, else -1
+    std::vector<double> componentDiagonal;  ///< per component: its bounding-box diagonal
 
     explicit Impl(std::shared_ptr<const TriangleMesh> m)
         : mesh(m),
@@ -27,9 +27,8 @@ struct MedialAxisSampler::Impl
         const auto &components = solids.components();
         for (std::size_t c = 0; c < components.size(); ++c)
         {
-            componentDiagonal.push_back(components[c].bounds.empty()
-                                            ? 0.0
-                                            : (components[c].bounds.max - components[c].bounds.min).norm());
+            componentDiagonal.push_back(
+                components[c].bounds.empty() ? 0.0 : (components[c].bounds.max - components[c].bounds.min).norm());
             if (components[c].closed)
                 for (std::uint32_t t : components[c].triangles)
                     componentOf[t] = std::int32_t(c);
@@ -59,7 +58,8 @@ struct MedialAxisSampler::Impl
                 for (std::uint32_t k = 0; k < node.triangleCount; ++k)
                 {
                     const std::uint32_t t = boxes.triangleOrder()[node.firstTriangle + k];
-                    const Vec3 q = closestPointOnTriangle(p, mesh->corner(t, 0), mesh->corner(t, 1), mesh->corner(t, 2));
+                    const Vec3 q =
+                        closestPointOnTriangle(p, mesh->corner(t, 0), mesh->corner(t, 1), mesh->corner(t, 2));
                     const double d = (q - p).norm();
                     if (d < best)
                     {
@@ -192,9 +192,9 @@ void placeOnMedialAxis(VolumeTree<MedialSphere> &tree, std::shared_ptr<const Tri
         MedialSphere best = node.volume;  // the fitted sphere, inner 0
         const auto first = std::lower_bound(candidates.begin(), candidates.end(), node.firstTriangle,
                                             [](const auto &c, std::uint32_t p) { return c.first < p; });
-        const auto last = std::lower_bound(candidates.begin(), candidates.end(),
-                                           node.firstTriangle + node.triangleCount,
-                                           [](const auto &c, std::uint32_t p) { return c.first < p; });
+        const auto last =
+            std::lower_bound(candidates.begin(), candidates.end(), node.firstTriangle + node.triangleCount,
+                             [](const auto &c, std::uint32_t p) { return c.first < p; });
         const std::size_t count = std::size_t(last - first);
         if (count == 0)
             return best;
@@ -205,9 +205,8 @@ void placeOnMedialAxis(VolumeTree<MedialSphere> &tree, std::shared_ptr<const Tri
             const MedialPoint &m = (first + std::ptrdiff_t(i))->second;
             const MedialSphere s{{m.center, coveringRadius(m.center, corners)}, m.inner};
             // Leaves: the least approximation bound; internal nodes: the smallest ball.
-            const bool better = node.isLeaf()
-                                    ? (!chosen || s.approximationBound() < best.approximationBound())
-                                    : s.ball.radius < best.ball.radius;
+            const bool better = node.isLeaf() ? (!chosen || s.approximationBound() < best.approximationBound())
+                                              : s.ball.radius < best.ball.radius;
             if (better)
             {
                 best = s;

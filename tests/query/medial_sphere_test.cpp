@@ -22,8 +22,8 @@ double distanceToMesh(const TriangleMesh &mesh, const Vec3 &p)
 {
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        best = std::min(best, (closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)) - p)
-                                  .norm());
+        best = std::min(
+            best, (closestPointOnTriangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)) - p).norm());
     return best;
 }
 
