@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # One table over every bounding volume (obb, ellipsoid, hybrid, sphere, aabb, aabb-fixed, kdop14,
-# kdop18, kdop26, medial) on OMPL.app's problems and the project's organic ones: node/content volume ratio, build time and memory (from
+# kdop18, kdop26, medial, ctree) on OMPL.app's problems and the project's organic ones: node/content volume ratio, build time and memory (from
 # `hybridcd inspect`), nanoseconds per volume test (hybridcd_bench_micro's BM_VolumeOverlap and
 # BM_VolumeTransform), node pairs tested and median nanoseconds per check and the ratio to FCL
 # (hybridcd_bench_checkers on the same uniform states). Needs the bench build
@@ -14,6 +14,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 resources=${HYBRIDCD_OMPLAPP_RESOURCES:-$root/../shared/omplapp-resources}
 checkers=obb,ellipsoid,hybrid,sphere,aabb,aabb-fixed,kdop14,kdop18,kdop26
 checkers+=,medial  # spheres on the medial axis of closed solids (exact mode)
+checkers+=,ctree   # C-trees: a sphere or a box per node, whichever is smaller
 states=2000
 problems=()
 while [ $# -gt 0 ]; do

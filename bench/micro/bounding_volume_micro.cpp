@@ -224,4 +224,5 @@ HCD_VOLUME_BENCHMARKS(KDop<14>, "kdop14")
 HCD_VOLUME_BENCHMARKS(KDop<18>, "kdop18")
 HCD_VOLUME_BENCHMARKS(KDop<26>, "kdop26")
 HCD_VOLUME_BENCHMARKS(MedialSphere, "medial")
+HCD_VOLUME_BENCHMARKS(CTreeVolume, "ctree")
 }  // namespace

@@ -60,6 +60,9 @@ CheckerCatalogue CheckerCatalogue::builtIn()
                                                                         o.approximateTolerance);
            },
            false, true});
+    // C-tree (seed section 3.3): each node a sphere or an oriented box, whichever is smaller.
+    c.add(treeEntry<CTreeVolume>("ctree", "C-trees: per node a sphere or an oriented box, whichever bounds "
+                                          "its triangles with less volume; exact triangle tests at the leaves"));
     return c;
 }
 

@@ -505,4 +505,5 @@ template class VolumeTreeChecker<KDop<14>>;
 template class VolumeTreeChecker<KDop<18>>;
 template class VolumeTreeChecker<KDop<26>>;
 template class VolumeTreeChecker<MedialSphere>;
+template class VolumeTreeChecker<CTreeVolume>;
 }  // namespace hcd

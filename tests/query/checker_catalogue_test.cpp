@@ -15,7 +15,7 @@ TEST(CheckerCatalogue, BuiltInListsTheCoreCheckersWithDescriptions)
     const std::vector<std::string> expected = {"obb",    "ellipsoid", "hybrid",     "hybrid-ellipsoid-first",
                                                "sphere", "aabb",      "aabb-fixed", "kdop14",
                                                "kdop18", "kdop26",    "bruteforce", "lp",
-                                               "medial"};
+                                               "medial", "ctree"};
     EXPECT_EQ(catalogue.names(), expected);
     for (const CheckerEntry &e : catalogue.entries())
     {

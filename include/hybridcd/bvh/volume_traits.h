@@ -7,6 +7,7 @@
 #pragma once
 
 #include "hybridcd/bv/aabb.h"
+#include "hybridcd/bv/ctree_volume.h"
 #include "hybridcd/bv/ellipsoid.h"
 #include "hybridcd/bv/fixed_aabb.h"
 #include "hybridcd/bv/hybrid_volume.h"
@@ -183,6 +184,37 @@ struct VolumeTraits<MedialSphere>
     static void appendMesh(const MedialSphere &s, ExportMesh &mesh)
     {
         appendMappedSphere(mesh, s.ball.center, s.ball.radius * Mat3::Identity());
+    }
+};
+
+/// C-tree nodes: a sphere or an oriented box per node, whichever is smaller (bv/ctree_volume.h).
+template <>
+struct VolumeTraits<CTreeVolume>
+{
+    static constexpr const char *kName = "C-tree (sphere or box)";
+    static CTreeVolume fit(const std::vector<Vec3> &points) { return CTreeVolume::fit(points); }
+    static Vec3 splitAxis(const CTreeVolume &v, const std::vector<Vec3> &points)
+    {
+        return v.kind == CTreeVolume::Kind::Box ? VolumeTraits<Obb>::splitAxis(v.box, points) : principalAxis(points);
+    }
+    static const Vec3 &center(const CTreeVolume &v) { return v.center(); }
+    static double radius(const CTreeVolume &v) { return v.boundingRadius(); }
+    static double volume(const CTreeVolume &v) { return v.volume(); }
+    static CTreeVolume transformed(const CTreeVolume &v, const RigidTransform &pose) { return v.transformed(pose); }
+    static bool overlap(const CTreeVolume &a, const CTreeVolume &b, double tolerance)
+    {
+        return ctreeVolumesOverlap(a, b, tolerance);
+    }
+    static double lowerBound(const CTreeVolume &a, const CTreeVolume &b, double tolerance)
+    {
+        return ctreeDistanceLowerBound(a, b, tolerance);
+    }
+    static void appendMesh(const CTreeVolume &v, ExportMesh &mesh)
+    {
+        if (v.kind == CTreeVolume::Kind::Box)
+            VolumeTraits<Obb>::appendMesh(v.box, mesh);
+        else
+            appendMappedSphere(mesh, v.sphere.center, v.sphere.radius * Mat3::Identity());
     }
 };
 
