@@ -43,8 +43,8 @@ namespace
 // the change of frame (1e-12 of the coordinates' magnitude).
 double sphereBoxGap(const Sphere &s, const Obb &b, double tolerance)
 {
-    const double magnitude = std::max(s.center.cwiseAbs().maxCoeff(), b.center.cwiseAbs().maxCoeff()) +
-                             b.halfExtents.norm() + s.radius;
+    const double magnitude =
+        std::max(s.center.cwiseAbs().maxCoeff(), b.center.cwiseAbs().maxCoeff()) + b.halfExtents.norm() + s.radius;
     return sphereBoxDistance(s, b) - tolerance - 1e-12 * magnitude;
 }
 }  // namespace

@@ -24,9 +24,9 @@ double pointBoxDistance(const Vec3 &p, const Obb &b)
     const Vec3 local = b.axes.transpose() * (p - b.center);
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t t = 0; t < cube.triangleCount(); ++t)
-        best = std::min(best, (closestPointOnTriangle(local, cube.corner(t, 0), cube.corner(t, 1), cube.corner(t, 2)) -
-                               local)
-                                  .norm());
+        best = std::min(
+            best,
+            (closestPointOnTriangle(local, cube.corner(t, 0), cube.corner(t, 1), cube.corner(t, 2)) - local).norm());
     return best;
 }
 
