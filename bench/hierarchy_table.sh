@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # One table over every bounding volume (obb, ellipsoid, hybrid, sphere, aabb, aabb-fixed, kdop14,
-# kdop18, kdop26, ssv, octree) on OMPL.app's problems: node/content volume ratio, build time and memory (from
+# kdop18, kdop26, ssv, octree, medial, ctree) on OMPL.app's problems and the project's organic ones: node/content volume ratio, build time and memory (from
 # `hybridcd inspect`), nanoseconds per volume test (hybridcd_bench_micro's BM_VolumeOverlap and
 # BM_VolumeTransform), node pairs tested and median nanoseconds per check and the ratio to FCL
 # (hybridcd_bench_checkers on the same uniform states). Needs the bench build
 # (-DHYBRIDCD_BUILD_BENCH=ON, with FCL).
 #   bash bench/hierarchy_table.sh [--states N] [PROBLEM ...]
 # PROBLEM is a .cfg path or a name under OMPL.app's resources such as 3D/cubicles; by default the
-# ten problems of bench/README.md, 2000 states each.
+# ten problems of bench/README.md and the project's three organic ones, 2000 states each.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 resources=${HYBRIDCD_OMPLAPP_RESOURCES:-$root/../shared/omplapp-resources}
@@ -16,6 +16,8 @@ checkers=obb,ellipsoid,hybrid,sphere,aabb,aabb-fixed,kdop14,kdop18,kdop26
 # Swept spheres, and the environment octree (robot OBB tree against cells; its volume test is an
 # OBB against a cube, BM_VolumeOverlap/octree, and its environment has no volume ratio).
 checkers=$checkers,ssv,octree
+checkers+=,medial  # spheres on the medial axis of closed solids (exact mode)
+checkers+=,ctree   # C-trees: a sphere or a box per node, whichever is smaller
 states=2000
 problems=()
 while [ $# -gt 0 ]; do
@@ -28,6 +30,8 @@ done
 if [ ${#problems[@]} -eq 0 ]; then
   problems=(3D/cubicles 3D/Easy 3D/Twistycool 3D/alpha-1.5 3D/Apartment 3D/Home 3D/bugtrap 3D/Abstract
             2D/Maze_planar 2D/BugTrap_planar)
+  # The project's organic problems (smooth closed meshes, problems/README.md).
+  problems+=("$root/problems/bone_3d.cfg" "$root/problems/ribcage_3d.cfg" "$root/problems/bones_2d.cfg")
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

@@ -29,6 +29,7 @@ Output is deterministic; it rewrites the committed files in problems/.
 
 import math
 import os
+import random
 
 OUT_DIR = os.path.dirname(os.path.abspath(__file__))
 
@@ -292,6 +293,340 @@ QUADROTOR_WINDOW_CFG = [
 ]
 
 
+# Organic problems: smooth, rounded, closed meshes (the seed's own example is
+# bones), beside the flat boxes above and OMPL.app's SketchUp meshes. Each
+# mesh is a graph over a sphere-like parameter grid (rays from a centre, or
+# from a spine for bones), so it is closed, outward-oriented and free of
+# self-intersections by construction; _check_closed verifies the first two.
+# All randomness comes from random.Random(seed), so output is deterministic.
+
+def _normalize(v):
+    n = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    return (v[0] / n, v[1] / n, v[2] / n)
+
+
+def _icosphere(level):
+    """Unit icosphere: (vertices, outward triangles); 20 * 4**level triangles."""
+    t = (1.0 + math.sqrt(5.0)) / 2.0
+    verts = [_normalize(v) for v in [
+        (-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0),
+        (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
+        (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11),
+             (1, 5, 9), (5, 11, 4), (11, 10, 2), (10, 7, 6), (7, 1, 8),
+             (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9),
+             (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    for _ in range(level):
+        mid = {}
+
+        def midpoint(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in mid:
+                pa, pb = verts[a], verts[b]
+                verts.append(_normalize(tuple((pa[k] + pb[k]) / 2.0 for k in range(3))))
+                mid[key] = len(verts) - 1
+            return mid[key]
+
+        nf = []
+        for a, b, c in faces:
+            ab, bc, ca = midpoint(a, b), midpoint(b, c), midpoint(c, a)
+            nf += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = nf
+    return verts, faces
+
+
+class _Bumps:
+    """Smooth seeded bumps on the unit sphere: 1 + sum a_k exp(s_k (d . c_k - 1))."""
+
+    def __init__(self, rng, count, amplitude, sharpness):
+        self.terms = []
+        for _ in range(count):
+            c = _normalize((rng.gauss(0, 1), rng.gauss(0, 1), rng.gauss(0, 1)))
+            a = amplitude * rng.uniform(-1.0, 1.0)
+            s = sharpness * rng.uniform(0.5, 1.5)
+            self.terms.append((c, a, s))
+
+    def __call__(self, d):
+        return 1.0 + sum(a * math.exp(s * (d[0] * c[0] + d[1] * c[1] + d[2] * c[2] - 1.0))
+                         for c, a, s in self.terms)
+
+
+def blob_mesh(rng, centre, radii, level=3, bumps=10):
+    """A noisy ellipsoid: icosphere vertices pushed along their direction."""
+    verts, faces = _icosphere(level)
+    field = _Bumps(rng, bumps, 0.35, 6.0)
+    out = []
+    for d in verts:
+        r = field(d)
+        assert r > 0.2
+        out.append(tuple(centre[k] + radii[k] * r * d[k] for k in range(3)))
+    return out, faces
+
+
+def bone_mesh(rng, length, shaft_radius, knob_radius, around=36, shaft_rings=28, cap_rings=12):
+    """A bone along x: a shaft that flares into two knobbly ends (two condyles each).
+
+    Ring vertices sit on rays from the x axis (shaft) or from the two knob
+    centres at x = -+length/2 (caps), at a radius given by smooth functions of
+    the ray, so the surface is a graph over a capsule and cannot fold."""
+    half = length / 2.0
+    noise = _Bumps(rng, 14, 0.06, 10.0)
+    lobes = []
+    for side in (-1.0, 1.0):  # two condyles per end, at a random twist
+        phi = rng.uniform(0.0, math.pi)
+        lobes.append([(side * 0.55, 0.8 * math.cos(phi + k * math.pi), 0.8 * math.sin(phi + k * math.pi))
+                      for k in (0, 1)])
+
+    def knob(side_index, d):
+        r = 1.0
+        for c in lobes[side_index]:
+            c = _normalize(c)
+            r += 0.35 * math.exp(5.0 * (d[0] * c[0] + d[1] * c[1] + d[2] * c[2] - 1.0))
+        return knob_radius * r * noise(d)
+
+    rings = []  # each ring: list of `around` points, from -x end to +x end
+    for i in range(1, cap_rings + 1):  # -x cap, latitude from the pole to the equator
+        th = (math.pi / 2.0) * i / cap_rings
+        ring = []
+        for j in range(around):
+            ph = 2.0 * math.pi * j / around
+            d = (-math.cos(th), math.sin(th) * math.cos(ph), math.sin(th) * math.sin(ph))
+            r = knob(0, d)
+            ring.append((-half + r * d[0], r * d[1], r * d[2]))
+        rings.append(ring)
+    for i in range(1, shaft_rings):
+        s = i / shaft_rings
+        x = -half + length * s
+        w = (2.0 * s - 1.0) ** 6  # 1 at the ends, flat in the middle
+        ring = []
+        for j in range(around):
+            ph = 2.0 * math.pi * j / around
+            d = (0.0, math.cos(ph), math.sin(ph))
+            end = knob(0 if s < 0.5 else 1, d)
+            r = (shaft_radius * noise(_normalize((2.0 * s - 1.0, d[1], d[2]))) * (1.0 - w) + end * w)
+            ring.append((x, r * d[1], r * d[2]))
+        rings.append(ring)
+    for i in range(cap_rings, 0, -1):  # +x cap, from the equator to the pole
+        th = (math.pi / 2.0) * i / cap_rings
+        ring = []
+        for j in range(around):
+            ph = 2.0 * math.pi * j / around
+            d = (math.cos(th), math.sin(th) * math.cos(ph), math.sin(th) * math.sin(ph))
+            r = knob(1, d)
+            ring.append((half + r * d[0], r * d[1], r * d[2]))
+        rings.append(ring)
+    r0 = knob(0, (-1.0, 0.0, 0.0))
+    r1 = knob(1, (1.0, 0.0, 0.0))
+    verts = [(-half - r0, 0.0, 0.0)]
+    for ring in rings:
+        verts += ring
+    verts.append((half + r1, 0.0, 0.0))
+    last = len(verts) - 1
+    faces = []
+    for j in range(around):  # -x pole fan
+        faces.append((0, 1 + (j + 1) % around, 1 + j))
+    for i in range(len(rings) - 1):
+        a0, b0 = 1 + i * around, 1 + (i + 1) * around
+        for j in range(around):
+            j1 = (j + 1) % around
+            faces.append((a0 + j, a0 + j1, b0 + j1))
+            faces.append((a0 + j, b0 + j1, b0 + j))
+    base = 1 + (len(rings) - 1) * around
+    for j in range(around):  # +x pole fan
+        faces.append((last, base + j, base + (j + 1) % around))
+    return verts, faces
+
+
+def _rotation(axis, angle):
+    x, y, z = _normalize(axis)
+    c, s = math.cos(angle), math.sin(angle)
+    C = 1.0 - c
+    return ((c + x * x * C, x * y * C - z * s, x * z * C + y * s),
+            (y * x * C + z * s, c + y * y * C, y * z * C - x * s),
+            (z * x * C - y * s, z * y * C + x * s, c + z * z * C))
+
+
+def placed(mesh, rotation, offset):
+    verts, faces = mesh
+    return ([tuple(sum(rotation[r][k] * v[k] for k in range(3)) + offset[r] for r in range(3)) for v in verts],
+            faces)
+
+
+def _check_closed(verts, faces):
+    """Every directed edge appears once and its reverse once (closed, consistently oriented),
+    and the signed volume is positive (outward)."""
+    edges = set()
+    for a, b, c in faces:
+        for e in ((a, b), (b, c), (c, a)):
+            assert e not in edges, "edge used twice in one direction"
+            edges.add(e)
+    assert all((b, a) in edges for a, b in edges), "open edge"
+    vol = 0.0
+    for a, b, c in faces:
+        p, q, r = verts[a], verts[b], verts[c]
+        vol += (p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0])
+                + p[2] * (q[0] * r[1] - q[1] * r[0])) / 6.0
+    assert vol > 0.0, "inward mesh"
+    return vol
+
+
+def centred_meshes(meshes):
+    """Translate meshes so the mean of all their vertices is the origin."""
+    pts = [v for verts, _ in meshes for v in verts]
+    m = tuple(sum(p[k] for p in pts) / len(pts) for k in range(3))
+    return [([tuple(v[k] - m[k] for k in range(3)) for v in verts], faces) for verts, faces in meshes]
+
+
+def write_meshes(name, meshes, comment):
+    lines = ["# %s" % c for c in comment]
+    ntri = sum(len(f) for _, f in meshes)
+    lines.append("# generated by problems/generate_problems.py; %d closed mesh%s, %d triangles"
+                 % (len(meshes), "" if len(meshes) == 1 else "es", ntri))
+    faces = []
+    base = 1
+    for verts, fs in meshes:
+        _check_closed(verts, fs)
+        for v in verts:
+            lines.append("v %s %s %s" % tuple("%.4f" % c for c in v))
+        for t in fs:
+            faces.append("f %d %d %d" % tuple(base + i for i in t))
+        base += len(verts)
+    lines.extend(faces)
+    _write(name, lines)
+
+
+# bone_3d: SE(3). A bone (knob centres 14 apart, shaft radius 1, knobs about
+# 2 to 2.7) flies through a wall of seven lumpy blobs at x near 0.
+def bone_3d_meshes():
+    rng = random.Random(1301)
+    robot = centred_meshes([bone_mesh(rng, 14.0, 1.0, 2.0)])
+    blobs = []
+    for k, (y, z) in enumerate([(-13, -13), (0, -13), (13, -13), (-7, 0), (7, 0), (-13, 13), (6, 13)]):
+        radii = (rng.uniform(5.0, 7.0), rng.uniform(5.5, 6.5), rng.uniform(5.5, 6.5))
+        blob = blob_mesh(rng, (0.0, 0.0, 0.0), radii)
+        blobs.append(placed(blob, _rotation((rng.gauss(0, 1), rng.gauss(0, 1), rng.gauss(0, 1)),
+                                            rng.uniform(0, 2 * math.pi)),
+                            (rng.uniform(-2.0, 2.0), float(y), float(z))))
+    return robot, blobs
+
+
+BONE_3D_CFG = [
+    ("name", "bone_3d"),
+    ("robot", "bone_3d_robot.obj"),
+    ("world", "bone_3d_env.obj"),
+    ("start.x", "-22.0"),
+    ("start.y", "0.0"),
+    ("start.z", "0.0"),
+    ("start.theta", "0.0"),
+    ("start.axis.x", "1.0"),
+    ("start.axis.y", "0.0"),
+    ("start.axis.z", "0.0"),
+    ("goal.x", "22.0"),
+    ("goal.y", "0.0"),
+    ("goal.z", "0.0"),
+    ("goal.theta", repr(math.pi / 2)),
+    ("goal.axis.x", "0.0"),
+    ("goal.axis.y", "1.0"),
+    ("goal.axis.z", "0.0"),
+    ("volume.min.x", "-25.0"),
+    ("volume.min.y", "-22.0"),
+    ("volume.min.z", "-22.0"),
+    ("volume.max.x", "25.0"),
+    ("volume.max.y", "22.0"),
+    ("volume.max.z", "22.0"),
+]
+
+
+# ribcage_3d: SE(3). A lumpy potato (about 12 x 7 x 6) passes between
+# four long bones lying side by side like ribs, 12 apart. It starts standing
+# (long axis along z), too tall for a gap, so it must turn to pass.
+def ribcage_3d_meshes():
+    rng = random.Random(1302)
+    robot = centred_meshes([blob_mesh(rng, (0.0, 0.0, 0.0), (6.0, 3.5, 3.0))])
+    ribs = []
+    for k, z in enumerate([-18.0, -6.0, 6.0, 18.0]):
+        bone = bone_mesh(rng, 44.0, 1.6, 3.0, around=24, shaft_rings=30, cap_rings=8)
+        ribs.append(placed(bone, _rotation((0.0, 0.0, 1.0), math.pi / 2 + rng.uniform(-0.1, 0.1)),
+                           (rng.uniform(-1.0, 1.0), 0.0, z + rng.uniform(-0.5, 0.5))))
+    return robot, ribs
+
+
+RIBCAGE_3D_CFG = [
+    ("name", "ribcage_3d"),
+    ("robot", "ribcage_3d_robot.obj"),
+    ("world", "ribcage_3d_env.obj"),
+    ("start.x", "-16.0"),
+    ("start.y", "0.0"),
+    ("start.z", "0.0"),
+    ("start.theta", repr(math.pi / 2)),
+    ("start.axis.x", "0.0"),
+    ("start.axis.y", "1.0"),
+    ("start.axis.z", "0.0"),
+    ("goal.x", "16.0"),
+    ("goal.y", "0.0"),
+    ("goal.z", "0.0"),
+    ("goal.theta", repr(math.pi / 2)),
+    ("goal.axis.x", "1.0"),
+    ("goal.axis.y", "0.0"),
+    ("goal.axis.z", "0.0"),
+    ("volume.min.x", "-20.0"),
+    ("volume.min.y", "-18.0"),
+    ("volume.min.z", "-24.0"),
+    ("volume.max.x", "20.0"),
+    ("volume.max.y", "18.0"),
+    ("volume.max.z", "24.0"),
+]
+
+
+# bones_2d: SE(2). The bone_3d robot slides in the plane z = 0 through a
+# field of lumpy blobs centred on that plane.
+def bones_2d_meshes():
+    rng = random.Random(1303)
+    robot = centred_meshes([bone_mesh(rng, 10.0, 1.0, 1.8, around=28, shaft_rings=20, cap_rings=8)])
+    blobs = []
+    for x, y in [(-10, -14), (-12, 4), (-10, 20), (4, -20), (2, -2), (4, 16), (18, -10), (17, 8)]:
+        radii = (rng.uniform(4.0, 5.5), rng.uniform(4.0, 5.5), 3.0)
+        blobs.append(placed(blob_mesh(rng, (0.0, 0.0, 0.0), radii, level=3, bumps=8),
+                            _rotation((0.0, 0.0, 1.0), rng.uniform(0, 2 * math.pi)),
+                            (float(x), float(y), 0.0)))
+    return robot, blobs
+
+
+BONES_2D_CFG = [
+    ("name", "bones_2d"),
+    ("robot", "bones_2d_robot.obj"),
+    ("world", "bones_2d_env.obj"),
+    ("start.x", "-26.0"),
+    ("start.y", "-2.0"),
+    ("start.theta", "0.0"),
+    ("goal.x", "28.0"),
+    ("goal.y", "0.0"),
+    ("goal.theta", repr(math.pi / 2)),
+    ("volume.min.x", "-30.0"),
+    ("volume.min.y", "-30.0"),
+    ("volume.max.x", "32.0"),
+    ("volume.max.y", "30.0"),
+]
+
+
+def write_organic():
+    robot, world = bone_3d_meshes()
+    write_meshes("bone_3d_robot.obj", robot,
+                 ["bone_3d robot: a bone, knob centres 14 apart, vertex mean at origin"])
+    write_meshes("bone_3d_env.obj", world, ["bone_3d world: a wall of seven lumpy blobs near x = 0"])
+    write_cfg("bone_3d.cfg", BONE_3D_CFG)
+    robot, world = ribcage_3d_meshes()
+    write_meshes("ribcage_3d_robot.obj", robot,
+                 ["ribcage_3d robot: a lumpy potato about 12 x 7 x 6, vertex mean at origin"])
+    write_meshes("ribcage_3d_env.obj", world, ["ribcage_3d world: four long bones along y, 12 apart in z"])
+    write_cfg("ribcage_3d.cfg", RIBCAGE_3D_CFG)
+    robot, world = bones_2d_meshes()
+    write_meshes("bones_2d_robot.obj", robot,
+                 ["bones_2d robot: a bone, knob centres 10 apart, vertex mean at origin"])
+    write_meshes("bones_2d_env.obj", world, ["bones_2d world: eight lumpy blobs centred on z = 0"])
+    write_cfg("bones_2d.cfg", BONES_2D_CFG)
+
+
 def main():
     write_obj("window_3d_env.obj", WINDOW_3D_ENV,
               ["window_3d world: closed 100x60x40 room split by a wall with a 20x20 window"])
@@ -309,6 +644,7 @@ def main():
     write_obj("quadrotor_window_robot.obj", QUADROTOR_WINDOW_ROBOT,
               ["quadrotor_window robot: a cross of two 0.6 x 0.08 x 0.06 arms over a 0.16 x 0.16 x 0.1 body"])
     write_cfg("quadrotor_window.cfg", QUADROTOR_WINDOW_CFG, planners=("kpiece", "rrt", "sst"), time_limit="20.0")
+    write_organic()
 
 
 if __name__ == "__main__":

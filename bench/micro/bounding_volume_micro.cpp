@@ -250,4 +250,6 @@ void BM_VolumeOverlapOctreeCell(benchmark::State &state)
 }
 BENCHMARK(BM_VolumeOverlapOctreeCell)->Name("BM_VolumeOverlap/octree");
 BENCHMARK_TEMPLATE(BM_VolumeTransform, Obb)->Name("BM_VolumeTransform/octree");
+HCD_VOLUME_BENCHMARKS(MedialSphere, "medial")
+HCD_VOLUME_BENCHMARKS(CTreeVolume, "ctree")
 }  // namespace

@@ -268,7 +268,8 @@ void addCheckerOptions(CommandLine &cl, bool several)
                       : "the collision checker (default auto; listed below)")
         .flag("surface-only", "treat meshes as surfaces only, as FCL does (default: closed components are solids)")
         .flag("no-grid", "no clearance grid first (default: a grid of the environment proves what it can first)")
-        .option("mode", "exact|approximate", "exact (default), or approximate with --tolerance (the lp checker)")
+        .option("mode", "exact|approximate",
+                "exact (default), or approximate with --tolerance (the lp and medial checkers)")
         .option("tolerance", "T", "approximate mode: contact may be reported up to distance T apart (positive)")
         .option("max-triangles", "N", "refuse meshes of more than N triangles (default 2000000)");
 }

@@ -89,6 +89,17 @@ CheckerCatalogue CheckerCatalogue::builtIn()
                return std::make_unique<ObbTreeChecker>(s, "lp", 1, stage);
            },
            false, true});
+    // Medial-axis spheres (seed section 3.2, eq. 5): leaves of up to 8 triangles.
+    c.add({"medial",
+           "sphere trees with the spheres on the medial axis of closed solids; exact, or approximate with a tolerance",
+           [](const CollisionScene &s, const CheckerOptions &o) {
+               return std::make_unique<VolumeTreeChecker<MedialSphere>>(s, "medial", 8, std::nullopt,
+                                                                        o.approximateTolerance);
+           },
+           false, true});
+    // C-tree (seed section 3.3): each node a sphere or an oriented box, whichever is smaller.
+    c.add(treeEntry<CTreeVolume>("ctree", "C-trees: per node a sphere or an oriented box, whichever bounds "
+                                          "its triangles with less volume; exact triangle tests at the leaves"));
     return c;
 }
 

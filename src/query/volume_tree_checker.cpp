@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/query/volume_tree_checker.h"
 
+#include "hybridcd/bvh/medial_axis.h"
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/narrowphase/linear_program.h"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <type_traits>
 
 namespace hcd
 {
@@ -93,7 +95,7 @@ private:
 
 template <class Volume>
 VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles,
-                                             std::optional<PieceStage> pieces)
+                                             std::optional<PieceStage> pieces, std::optional<double> leafTolerance)
     : robotFaces_(withoutRepeatedFaces(scene.robot)),
       environmentFaces_(withoutRepeatedFaces(scene.environment)),
       scene_{robotFaces_.mesh, environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName)},
@@ -102,8 +104,14 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
       environmentTree_(scene_.environment, pieces ? pieces->leafTriangles : maxLeafTriangles),
       robotRadius_(scene_.robot->radiusAboutOrigin()),
       environmentMagnitude_(scene_.environment->radiusAboutOrigin()),
-      pieceStage_(pieces)
+      pieceStage_(pieces),
+      leafTolerance_(leafTolerance)
 {
+    if constexpr (std::is_same_v<Volume, MedialSphere>)
+    {
+        placeOnMedialAxis(robotTree_, scene_.robot);
+        placeOnMedialAxis(environmentTree_, scene_.environment);
+    }
     // How far each robot node and triangle reaches from the robot origin (for swept proximity).
     const TriangleMesh &robot = *scene_.robot;
     for (const auto &node : robotTree_.nodes())
@@ -228,6 +236,17 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             continue;
         if (rn.isLeaf() && en.isLeaf())
         {
+            if constexpr (std::is_same_v<Volume, MedialSphere>)
+            {
+                // Overlapping leaf spheres put the solids within the sum of their bounds (plus the
+                // test's tolerance) of each other: small enough, that decides (approximate mode).
+                if (leafTolerance_ && !proximity && !found &&
+                    robotVolume.approximationBound() + en.volume.approximationBound() + tolerance <= *leafTolerance_)
+                {
+                    hit = true;
+                    continue;
+                }
+            }
             if (pieceStage_ && !proximity)
             {
                 const std::int32_t rp = robotPieces_.pieceOfNode[pair.robot];
@@ -461,4 +480,6 @@ template class VolumeTreeChecker<KDop<14>>;
 template class VolumeTreeChecker<KDop<18>>;
 template class VolumeTreeChecker<KDop<26>>;
 template class VolumeTreeChecker<Ssv>;
+template class VolumeTreeChecker<MedialSphere>;
+template class VolumeTreeChecker<CTreeVolume>;
 }  // namespace hcd

@@ -242,7 +242,8 @@ TEST(Bench, KinodynamicProblemsRunControlPlannersUnderEveryConfiguration)
     std::filesystem::create_directories(dir);
     const std::string base =
         std::string(HYBRIDCD_CLI) + " bench " + hcd::test::sourcePath("problems/corridor_kcar.cfg");
-    const Output run = shell(base + " --planner kpiece,rrt --runs 3 --time 1 --seed 3 --out " + dir + "/k.log");
+    const Output run =
+        shell(base + " --checker obb --planner kpiece,rrt --runs 3 --time 1 --seed 3 --out " + dir + "/k.log");
     ASSERT_EQ(run.status, 0) << run.output;
     // The log names control planners, every one under hybridcd's set-up and OMPL.app's (FCL, states
     // checked at the 0.2 s propagation steps only).

@@ -89,6 +89,13 @@ TEST(Solve, ProjectProblems)
     solveAndVerify(test::sourcePath("problems/corridor_2d.cfg"), "rrtconnect", 60);
     solveAndVerify(test::sourcePath("problems/corridor_2d.cfg"), "kpiece", 60);
 }
+// The organic problems (smooth closed meshes of a few thousand triangles, problems/README.md).
+TEST(Solve, OrganicProblems)
+{
+    solveAndVerify(test::sourcePath("problems/bone_3d.cfg"), "rrtconnect", 60);
+    solveAndVerify(test::sourcePath("problems/ribcage_3d.cfg"), "rrtconnect", 60);
+    solveAndVerify(test::sourcePath("problems/bones_2d.cfg"), "rrtconnect", 60);
+}
 // Samples pushed out onto the obstacles' surfaces: paths stay valid. (On problems that solve in well
 // under a second: retraction makes Twistycool slower to solve, bench/README.md, so a time limit
 // there would make the test depend on the machine's load.)

@@ -15,7 +15,8 @@ TEST(CheckerCatalogue, BuiltInListsTheCoreCheckersWithDescriptions)
     const std::vector<std::string> expected = {"obb",    "ellipsoid",  "hybrid",     "hybrid-ellipsoid-first",
                                                "sphere", "aabb",       "aabb-fixed", "kdop14",
                                                "kdop18", "kdop26",     "ssv",        "octree",
-                                               "auto",   "bruteforce", "lp"};
+                                               "auto",   "bruteforce", "lp",         "medial",
+                                               "ctree"};
     EXPECT_EQ(catalogue.names(), expected);
     for (const CheckerEntry &e : catalogue.entries())
     {
@@ -54,9 +55,10 @@ TEST(CheckerCatalogue, ApproximateModeOnlyWhereSupported)
     CheckerOptions approximate;
     approximate.approximateTolerance = 0.01;
     EXPECT_NO_THROW(catalogue.check("lp", approximate));
+    EXPECT_NO_THROW(catalogue.check("medial", approximate));
     for (const std::string &name : catalogue.names())
     {
-        if (name == "lp")
+        if (name == "lp" || name == "medial")
             continue;
         try
         {
@@ -65,7 +67,7 @@ TEST(CheckerCatalogue, ApproximateModeOnlyWhereSupported)
         }
         catch (const std::invalid_argument &e)
         {
-            EXPECT_NE(std::string(e.what()).find("has no approximate mode (checkers that have one: lp)"),
+            EXPECT_NE(std::string(e.what()).find("has no approximate mode (checkers that have one: lp, medial)"),
                       std::string::npos)
                 << e.what();
         }

@@ -170,3 +170,10 @@ TEST(VolumeAgreement, Apartment)
         skipped = {"ellipsoid", "hybrid", "hybrid-ellipsoid-first", "lp"};
     checkProblem(cfg, test::cases(40), 2, test::cases(20), skipped);
 }
+// The project's organic problems (smooth closed meshes of thousands of triangles, where brute
+// force is slow): fewer poses, and distances only on the OMPL.app problems above.
+#define HCD_ORGANIC_AGREEMENT(Name, relative)                                                                          \
+    TEST(VolumeAgreement, Name) { checkProblem(test::sourcePath(relative), test::cases(16), 0, test::cases(4)); }
+HCD_ORGANIC_AGREEMENT(OrganicBone3d, "problems/bone_3d.cfg")
+HCD_ORGANIC_AGREEMENT(OrganicRibcage3d, "problems/ribcage_3d.cfg")
+HCD_ORGANIC_AGREEMENT(OrganicBones2d, "problems/bones_2d.cfg")

@@ -7,10 +7,12 @@
 #pragma once
 
 #include "hybridcd/bv/aabb.h"
+#include "hybridcd/bv/ctree_volume.h"
 #include "hybridcd/bv/ellipsoid.h"
 #include "hybridcd/bv/fixed_aabb.h"
 #include "hybridcd/bv/hybrid_volume.h"
 #include "hybridcd/bv/kdop.h"
+#include "hybridcd/bv/medial_sphere.h"
 #include "hybridcd/bv/minimum_volume_ellipsoid.h"
 #include "hybridcd/bv/obb.h"
 #include "hybridcd/bv/principal_axis.h"
@@ -157,6 +159,63 @@ struct VolumeTraits<Sphere>
     static void appendMesh(const Sphere &s, ExportMesh &mesh)
     {
         appendMappedSphere(mesh, s.center, s.radius * Mat3::Identity());
+    }
+};
+
+/// Spheres placed on the medial axis (bvh/medial_axis.h moves them there after the build); fitted
+/// like `Sphere` until then.
+template <>
+struct VolumeTraits<MedialSphere>
+{
+    static constexpr const char *kName = "medial sphere";
+    static MedialSphere fit(const std::vector<Vec3> &points) { return {Sphere::fit(points), 0.0}; }
+    static Vec3 splitAxis(const MedialSphere &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    static const Vec3 &center(const MedialSphere &s) { return s.ball.center; }
+    static double radius(const MedialSphere &s) { return s.ball.radius; }
+    static double volume(const MedialSphere &s) { return s.ball.volume(); }
+    static MedialSphere transformed(const MedialSphere &s, const RigidTransform &pose) { return s.transformed(pose); }
+    static bool overlap(const MedialSphere &a, const MedialSphere &b, double tolerance)
+    {
+        return spheresOverlap(a.ball, b.ball, tolerance);
+    }
+    static double lowerBound(const MedialSphere &a, const MedialSphere &b, double tolerance)
+    {
+        return sphereDistanceLowerBound(a.ball, b.ball, tolerance);
+    }
+    static void appendMesh(const MedialSphere &s, ExportMesh &mesh)
+    {
+        appendMappedSphere(mesh, s.ball.center, s.ball.radius * Mat3::Identity());
+    }
+};
+
+/// C-tree nodes: a sphere or an oriented box per node, whichever is smaller (bv/ctree_volume.h).
+template <>
+struct VolumeTraits<CTreeVolume>
+{
+    static constexpr const char *kName = "C-tree (sphere or box)";
+    static CTreeVolume fit(const std::vector<Vec3> &points) { return CTreeVolume::fit(points); }
+    static Vec3 splitAxis(const CTreeVolume &v, const std::vector<Vec3> &points)
+    {
+        return v.kind == CTreeVolume::Kind::Box ? VolumeTraits<Obb>::splitAxis(v.box, points) : principalAxis(points);
+    }
+    static const Vec3 &center(const CTreeVolume &v) { return v.center(); }
+    static double radius(const CTreeVolume &v) { return v.boundingRadius(); }
+    static double volume(const CTreeVolume &v) { return v.volume(); }
+    static CTreeVolume transformed(const CTreeVolume &v, const RigidTransform &pose) { return v.transformed(pose); }
+    static bool overlap(const CTreeVolume &a, const CTreeVolume &b, double tolerance)
+    {
+        return ctreeVolumesOverlap(a, b, tolerance);
+    }
+    static double lowerBound(const CTreeVolume &a, const CTreeVolume &b, double tolerance)
+    {
+        return ctreeDistanceLowerBound(a, b, tolerance);
+    }
+    static void appendMesh(const CTreeVolume &v, ExportMesh &mesh)
+    {
+        if (v.kind == CTreeVolume::Kind::Box)
+            VolumeTraits<Obb>::appendMesh(v.box, mesh);
+        else
+            appendMappedSphere(mesh, v.sphere.center, v.sphere.radius * Mat3::Identity());
     }
 };
 

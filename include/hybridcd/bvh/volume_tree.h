@@ -66,9 +66,29 @@ public:
     const std::vector<std::uint32_t> &triangleOrder() const { return order_; }
     std::size_t depth() const { return depth_; }
     double buildSeconds() const { return buildSeconds_; }
+    /// Counts later work on the volumes (refitVolumes) as part of the build.
+    void addBuildSeconds(double seconds) { buildSeconds_ += seconds; }
     std::size_t memoryBytes() const
     {
         return nodes_.capacity() * sizeof(Node) + order_.capacity() * sizeof(std::uint32_t);
+    }
+
+    /// Replaces every node's volume by `refit(node index, corners of the node's triangles)`, which
+    /// must contain those corners (volumes placed by more than their content: bvh/medial_axis.h).
+    template <class Refit>
+    void refitVolumes(Refit &&refit)
+    {
+        std::vector<Vec3> corners;
+        for (std::size_t i = 0; i < nodes_.size(); ++i)
+        {
+            Node &n = nodes_[i];
+            corners.clear();
+            for (std::uint32_t k = 0; k < n.triangleCount; ++k)
+                for (int c = 0; c < 3; ++c)
+                    corners.push_back(mesh_->corner(order_[n.firstTriangle + k], c));
+            n.volume = refit(i, corners);
+            n.radius = Traits::radius(n.volume);
+        }
     }
 
 private:

@@ -28,12 +28,20 @@ struct PieceStage
     std::optional<double> approximateTolerance;
 };
 
+/// Medial spheres (`--checker medial`, Volume = MedialSphere): the trees' spheres are moved onto
+/// the medial axis of the closed solids after the build (bvh/medial_axis.h). Exact mode (no
+/// `leafTolerance`): the spheres only reject, the triangles decide. Approximate mode (tolerance
+/// T >= 0): a pair of overlapping leaf spheres whose approximation bounds
+/// (MedialSphere::approximationBound) add up to at most T reports collision alone, so a collision
+/// is reported only when the solids (or, for open meshes, the triangles) come within T, and never
+/// missed; other leaf pairs go to the triangles. Contacts are always exact triangle pairs.
 template <class Volume>
 class VolumeTreeChecker final : public CollisionChecker
 {
 public:
     VolumeTreeChecker(CollisionScene scene, std::string name, unsigned maxLeafTriangles = 1,
-                      std::optional<PieceStage> pieces = std::nullopt);
+                      std::optional<PieceStage> pieces = std::nullopt,
+                      std::optional<double> leafTolerance = std::nullopt);
     std::string name() const override { return name_; }
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
     std::optional<LevelVolumes> levelVolumes(int level) const override;
@@ -84,6 +92,7 @@ private:
     std::vector<double> robotNodeReach_;                     ///< per robot node: max |p| over its volume (robot frame)
     std::vector<double> robotTriangleReach_;                 ///< per robot triangle: max |corner|
     std::optional<PieceStage> pieceStage_;
+    std::optional<double> leafTolerance_;  ///< approximate mode of the medial spheres
     ConvexDecomposition robotPieces_, environmentPieces_;
 };
 
