@@ -235,16 +235,24 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
+std::int64_t ClearanceGrid::cellOf(const Vec3 &p) const
 {
-    if (occupiedMask_.empty())
-        return -1;
     const double fx = (p.x() - origin_.x()) * inverseCellSize_;
     const double fy = (p.y() - origin_.y()) * inverseCellSize_;
     const double fz = (p.z() - origin_.z()) * inverseCellSize_;
     if (!(fx >= 0.0 && fy >= 0.0 && fz >= 0.0 && fx < nx_ && fy < ny_ && fz < nz_))
         return -1;
-    const std::size_t i = (std::size_t(fz) * ny_ + std::size_t(fy)) * nx_ + std::size_t(fx);
+    return std::int64_t((std::size_t(fz) * ny_ + std::size_t(fy)) * nx_ + std::size_t(fx));
+}
+
+std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
+{
+    if (occupiedMask_.empty())
+        return -1;
+    const std::int64_t cell = cellOf(p);
+    if (cell < 0)
+        return -1;
+    const auto i = std::size_t(cell);
     const std::uint64_t word = occupiedMask_[i / 64];
     const std::uint64_t bit = std::uint64_t(1) << (i % 64);
     if (!(word & bit))
@@ -262,10 +270,8 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         return s;
     }
     const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
-    const double fx = (p.x() - origin_.x()) * inverseCellSize_;
-    const double fy = (p.y() - origin_.y()) * inverseCellSize_;
-    const double fz = (p.z() - origin_.z()) * inverseCellSize_;
-    if (!(fx >= 0.0 && fy >= 0.0 && fz >= 0.0 && fx < nx_ && fy < ny_ && fz < nz_))
+    const std::int64_t cell = cellOf(p);
+    if (cell < 0)
     {
         // Beyond the grid: the mesh's bounding box bounds everything, solids and markers included.
         const Vec3 gap = (meshMin_ - p).cwiseMax(p - meshMax_).cwiseMax(Vec3::Zero());
@@ -275,7 +281,7 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         s.markerClearance = hasMarkers_ ? s.clearance : std::numeric_limits<double>::infinity();
         return s;
     }
-    const std::size_t i = (std::size_t(fz) * ny_ + std::size_t(fy)) * nx_ + std::size_t(fx);
+    const auto i = std::size_t(cell);
     const std::uint8_t code = surfaceCode_[i];
     if (code != 0)
     {

@@ -75,6 +75,9 @@ public:
     double buildSeconds() const { return buildSeconds_; }
 
 private:
+    /// Index of the cell holding p, or -1 beyond the grid (or for a non-finite p).
+    std::int64_t cellOf(const Vec3 &p) const;
+
     Vec3 origin_ = Vec3::Zero();
     Vec3 meshMin_ = Vec3::Zero(), meshMax_ = Vec3::Zero();
     double cellSize_ = 0.0, inverseCellSize_ = 0.0;
