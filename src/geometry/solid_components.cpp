@@ -522,4 +522,12 @@ double SolidQuery::solidVolumeFraction(std::size_t samples, std::uint64_t seed) 
     }
     return double(inside) / double(samples);
 }
+std::vector<Vec3> firstVertexOfEachComponent(const SolidQuery &solids)
+{
+    std::vector<Vec3> out;
+    for (const MeshComponent &c : solids.components())
+        if (!c.triangles.empty())
+            out.push_back(solids.mesh().corner(c.triangles.front(), 0));
+    return out;
+}
 }  // namespace hcd

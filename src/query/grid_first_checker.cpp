@@ -7,18 +7,6 @@
 
 namespace hcd
 {
-namespace
-{
-std::vector<Vec3> firstVertexOfEachComponent(const SolidQuery &solids)
-{
-    std::vector<Vec3> out;
-    for (const MeshComponent &c : solids.components())
-        if (!c.triangles.empty())
-            out.push_back(solids.mesh().corner(c.triangles.front(), 0));
-    return out;
-}
-}  // namespace
-
 GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, const CollisionScene &scene,
                                    ContactSemantics semantics, GridFirstSettings settings)
     : exact_(std::move(exact)),

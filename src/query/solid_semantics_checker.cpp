@@ -3,24 +3,12 @@
 
 namespace hcd
 {
-namespace
-{
-std::vector<Vec3> representatives(const SolidQuery &solids)
-{
-    std::vector<Vec3> out;
-    for (const MeshComponent &c : solids.components())
-        if (!c.triangles.empty())
-            out.push_back(solids.mesh().corner(c.triangles.front(), 0));
-    return out;
-}
-}  // namespace
-
 SolidSemanticsChecker::SolidSemanticsChecker(std::unique_ptr<CollisionChecker> surface, const CollisionScene &scene)
     : surface_(std::move(surface)),
       environmentSolids_(scene.environment),
       robotSolids_(scene.robot),
-      robotRepresentatives_(representatives(robotSolids_)),
-      environmentRepresentatives_(representatives(environmentSolids_))
+      robotRepresentatives_(firstVertexOfEachComponent(robotSolids_)),
+      environmentRepresentatives_(firstVertexOfEachComponent(environmentSolids_))
 {
 }
 

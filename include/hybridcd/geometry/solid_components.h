@@ -74,4 +74,8 @@ private:
     std::shared_ptr<const TriangleMesh> mesh_;
     std::shared_ptr<const Index> index_;
 };
+
+/// One vertex of each non-empty component of the query's mesh, in components() order: a point
+/// that decides, once surfaces are disjoint, on which side of every solid the component lies.
+std::vector<Vec3> firstVertexOfEachComponent(const SolidQuery &solids);
 }  // namespace hcd
