@@ -59,8 +59,8 @@ for problem in "${problems[@]}"; do
       ratio = "-"; if (line ~ /volume ratio/) { ratio = line; sub(/.*content /, "", ratio); sub(/ .*/, "", ratio) }
       b[checker] += build; m[checker] += mem; r[checker, side] = ratio; seen[checker] = 1 }
     END { for (c in seen) printf "%s %s %s %.2f %.0f\n", c, r[c, "r"], r[c, "e"], b[c], m[c] }' > "$tmp/inspect.txt"
-  "$root/build/bench/hybridcd_bench_checkers" --states "$states" --no-reference --no-grid --checker "$checkers,fcl" "$cfg" |
-    awk -F'|' 'NR > 2 { gsub(/ /, "", $3); gsub(/ /, "", $4); gsub(/ /, "", $6); gsub(/ /, "", $10);
+  "$root/build/bench/hybridcd_bench_checkers" --states "$states" --raw-times --no-reference --no-grid --checker "$checkers,fcl" "$cfg" |
+    awk -F'|' 'NR > 2 && /^[|]/ { gsub(/ /, "", $3); gsub(/ /, "", $4); gsub(/ /, "", $6); gsub(/ /, "", $10);
                         print $3, $4, $6, $10 }' > "$tmp/checks.txt"
   awk -v p="$name" '
     FILENAME ~ /micro/ { ns[$1, $2] = $3; next }

@@ -206,13 +206,14 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             }
         }
     }
-    surfaceCode_.resize(cellCount);
-    for (std::size_t i = 0; i < cellCount; ++i)
-        surfaceCode_[i] = !freeCell[i]    ? 0
-                          : insideCell[i] ? std::uint8_t(128 + stepsBelow(squared[i], 127))
-                                          : std::uint8_t(1 + stepsBelow(squared[i], 126));
-
     hasMarkers_ = !markers.empty();
+    stride_ = hasMarkers_ ? 2 : 1;
+    cellBytes_.resize(cellCount * stride_);
+    for (std::size_t i = 0; i < cellCount; ++i)
+        cellBytes_[i * stride_] = !freeCell[i]    ? 0
+                                  : insideCell[i] ? std::uint8_t(128 + stepsBelow(squared[i], 127))
+                                                  : std::uint8_t(1 + stepsBelow(squared[i], 126));
+
     if (hasMarkers_)
     {
         std::fill(squared.begin(), squared.end(), kUnreached);
@@ -228,9 +229,8 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                         squared[cellIndex(x, y, z)] = 0.0;
         }
         distanceTransform3d(squared, nx_, ny_, nz_);
-        markerSteps_.resize(cellCount);
         for (std::size_t i = 0; i < cellCount; ++i)
-            markerSteps_[i] = std::uint8_t(stepsBelow(squared[i], 255));
+            cellBytes_[i * 2 + 1] = std::uint8_t(stepsBelow(squared[i], 255));
     }
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -263,7 +263,7 @@ std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
 ClearanceSample ClearanceGrid::at(const Vec3 &p) const
 {
     ClearanceSample s;
-    if (surfaceCode_.empty())
+    if (cellBytes_.empty())
     {
         s.clearance = s.markerClearance = std::numeric_limits<double>::infinity();
         s.outside = true;
@@ -282,7 +282,7 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         return s;
     }
     const auto i = std::size_t(cell);
-    const std::uint8_t code = surfaceCode_[i];
+    const std::uint8_t code = cellBytes_[i * stride_];
     if (code != 0)
     {
         const bool inside = code >= 128;
@@ -290,8 +290,8 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         s.inside = labelled_ && inside;
         s.outside = labelled_ && !inside;
     }
-    s.markerClearance =
-        hasMarkers_ ? std::max(0.0, markerSteps_[i] * cellSize_ - slack) : std::numeric_limits<double>::infinity();
+    s.markerClearance = hasMarkers_ ? std::max(0.0, cellBytes_[i * 2 + 1] * cellSize_ - slack)
+                                    : std::numeric_limits<double>::infinity();
     return s;
 }
 }  // namespace hcd

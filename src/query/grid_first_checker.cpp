@@ -2,6 +2,7 @@
 #include "hybridcd/query/grid_first_checker.h"
 
 #include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/geometry/triangle_intersection.h"
 
 #include <algorithm>
 
@@ -26,6 +27,10 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     for (const CoverSphere &s : cover_)
         if (s.firstChild < 0)
             gridSettings.margin = std::max(gridSettings.margin, s.radius);
+    robot_ = robot.mesh;
+    environment_ = environment.mesh;
+    gridSettings.keepTriangles = true;
+    indexLeafTriangles();
     if (solid_)
     {
         const SolidQuery environmentSolids(environment.mesh);
@@ -37,8 +42,6 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
             ClearanceGridSettings robotSettings;
             robotSettings.maxCells = settings.maxRobotCells;
             robotGrid_ = ClearanceGrid(*robot.mesh, &robotSolids, {}, robotSettings);
-            gridSettings.keepTriangles = true;
-            environment_ = environment.mesh;
         }
         grid_ = ClearanceGrid(*environment.mesh, &environmentSolids,
                               robotHasSolids_ ? firstVertexOfEachComponent(environmentSolids) : std::vector<Vec3>{},
@@ -46,6 +49,30 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     }
     else
         grid_ = ClearanceGrid(*environment.mesh, nullptr, {}, gridSettings);
+}
+
+void GridFirstChecker::indexLeafTriangles()
+{
+    const TriangleMesh &robot = *robot_;
+    leafStart_.assign(cover_.size() + 1, 0);
+    for (std::size_t i = 0; i < cover_.size(); ++i)
+    {
+        leafStart_[i] = std::uint32_t(leafTriangles_.size());
+        const CoverSphere &s = cover_[i];
+        if (s.firstChild >= 0)
+            continue;
+        for (std::size_t t = 0; t < robot.triangleCount(); ++t)
+        {
+            const Vec3 &a = robot.corner(t, 0), &b = robot.corner(t, 1), &c = robot.corner(t, 2);
+            const Vec3 low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
+            if (((low.array() - s.radius) > s.center.array()).any() ||
+                ((high.array() + s.radius) < s.center.array()).any())
+                continue;
+            if ((closestPointOnTriangle(s.center, a, b, c) - s.center).norm() <= s.radius)
+                leafTriangles_.push_back(std::uint32_t(t));
+        }
+    }
+    leafStart_[cover_.size()] = std::uint32_t(leafTriangles_.size());
 }
 
 std::vector<HierarchyReport> GridFirstChecker::hierarchies(bool withVolumeRatios) const
@@ -74,19 +101,29 @@ bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double t
         return false;
     // Rounding of R * c + t, relative to the magnitudes involved.
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
+    const auto clears = [&](const CoverSphere &s) {
+        const ClearanceSample sample = grid_.at(worldFromRobot.apply(s.center));
+        const double slack = translationSlack + radialSlack * (s.center.norm() + s.radius);
+        return sample.clearance > s.radius + slack + rounding && (!solid_ || sample.outside);
+    };
+    // The root sphere holds the whole robot, solid included (a ball is convex): when it clears the
+    // surface no environment component can lie inside the robot either.
+    if (clears(cover_[0]))
+        return true;
     if (solid_ && robotHasSolids_ && !(grid_.at(worldFromRobot.translation).markerClearance > robotReach_ + rounding))
         return false;
     // Depth first over the cover tree: a sphere clear of the surface (and outside every solid)
     // clears its whole subtree; a leaf that is not proves nothing.
+    if (cover_[0].firstChild < 0)
+        return false;
     int stack[64];
     int size = 0;
-    stack[size++] = 0;
+    stack[size++] = cover_[0].firstChild + 1;
+    stack[size++] = cover_[0].firstChild;
     while (size > 0)
     {
         const CoverSphere &s = cover_[std::size_t(stack[--size])];
-        const ClearanceSample sample = grid_.at(worldFromRobot.apply(s.center));
-        const double slack = translationSlack + radialSlack * (s.center.norm() + s.radius);
-        if (sample.clearance > s.radius + slack + rounding && (!solid_ || sample.outside))
+        if (clears(s))
             continue;
         if (s.firstChild < 0)
             return false;
@@ -130,11 +167,57 @@ bool GridFirstChecker::collidingByGrid(const RigidTransform &worldFromRobot) con
     return false;
 }
 
+bool GridFirstChecker::collidingByWitness(const RigidTransform &worldFromRobot) const
+{
+    if (grid_.empty() || !environment_ || !worldFromRobot.isFinite())
+        return false;
+    const TriangleMesh &env = *environment_;
+    const TriangleMesh &robot = *robot_;
+    const Mat3 &rotation = worldFromRobot.rotation;
+    for (std::size_t i = 0; i < cover_.size(); ++i)
+    {
+        const CoverSphere &s = cover_[i];
+        if (s.firstChild >= 0 || leafStart_[i] == leafStart_[i + 1])
+            continue;
+        const std::int64_t t = grid_.triangleNear(worldFromRobot.apply(s.center));
+        if (t < 0)
+            continue;
+        const Vec3 &b0 = env.corner(std::size_t(t), 0), &b1 = env.corner(std::size_t(t), 1),
+                   &b2 = env.corner(std::size_t(t), 2);
+        // The plane of the environment triangle in the robot frame, as a filter only: a robot
+        // triangle with every vertex clearly on one side cannot meet it. `margin` is far above the
+        // rounding in these values, so the filter never drops a triangle the exact test would keep.
+        const Vec3 normal = (b1 - b0).cross(b2 - b0);
+        const Vec3 robotNormal = rotation.transpose() * normal;
+        const double offset = normal.dot(worldFromRobot.translation - b0);
+        const double margin =
+            1e-9 * normal.norm() *
+            (robotReach_ + worldFromRobot.translation.cwiseAbs().maxCoeff() + b0.cwiseAbs().maxCoeff() + 1e-300);
+        const Vec3 low = b0.cwiseMin(b1).cwiseMin(b2), high = b0.cwiseMax(b1).cwiseMax(b2);
+        for (std::uint32_t k = leafStart_[i]; k < leafStart_[i + 1]; ++k)
+        {
+            const std::size_t rt = leafTriangles_[k];
+            const Vec3 &a0 = robot.corner(rt, 0), &a1 = robot.corner(rt, 1), &a2 = robot.corner(rt, 2);
+            const double s0 = robotNormal.dot(a0) + offset, s1 = robotNormal.dot(a1) + offset,
+                         s2 = robotNormal.dot(a2) + offset;
+            if ((s0 > margin && s1 > margin && s2 > margin) || (s0 < -margin && s1 < -margin && s2 < -margin))
+                continue;
+            const Vec3 w0 = worldFromRobot.apply(a0), w1 = worldFromRobot.apply(a1), w2 = worldFromRobot.apply(a2);
+            if ((w0.cwiseMin(w1).cwiseMin(w2).array() > high.array()).any() ||
+                (w0.cwiseMax(w1).cwiseMax(w2).array() < low.array()).any())
+                continue;
+            if (trianglesIntersect(w0, w1, w2, b0, b1, b2))
+                return true;
+        }
+    }
+    return false;
+}
+
 bool GridFirstChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
     if (freeByGrid(worldFromRobot))
         return false;
-    if (collidingByGrid(worldFromRobot))
+    if (collidingByGrid(worldFromRobot) || collidingByWitness(worldFromRobot))
         return true;
     return exact_->collides(worldFromRobot, context);
 }

@@ -72,7 +72,7 @@ RigidTransform randomPose(test::TestRandom &rng, double extent)
 
 struct Verdicts
 {
-    int freeProved = 0, collidingProved = 0, free = 0, colliding = 0;
+    int freeProved = 0, collidingProved = 0, witnessProved = 0, free = 0, colliding = 0;
 };
 
 /// Every answer of the grid-first checker equals bruteforce's; each proof alone is never wrong.
@@ -98,10 +98,13 @@ Verdicts expectAgreement(const CollisionScene &scene, ContactSemantics semantics
         EXPECT_EQ(checker->collides(pose, context), truth);
         const bool freeProved = grid->freeByGrid(pose);
         const bool collidingProved = grid->collidingByGrid(pose);
+        const bool witnessProved = grid->collidingByWitness(pose);
         EXPECT_FALSE(freeProved && truth) << "the grid proved a colliding pose free";
         EXPECT_FALSE(collidingProved && !truth) << "the grid proved a free pose colliding";
+        EXPECT_FALSE(witnessProved && !truth) << "a witness pair was found at a free pose";
         v.freeProved += freeProved;
         v.collidingProved += collidingProved;
+        v.witnessProved += witnessProved;
         (truth ? v.colliding : v.free) += 1;
         if (!truth)
         {
@@ -204,6 +207,8 @@ TEST(GridFirst, AgreesWithBruteForceInClutterAtEveryScale)
             }
             const Verdicts v = expectAgreement(scene, semantics, poses);
             EXPECT_GT(v.freeProved, v.free / 4) << "scale " << scale;
+            if (v.colliding >= 20)
+                EXPECT_GT(v.witnessProved, v.colliding / 4) << "scale " << scale;
             if (semantics == ContactSemantics::Solid)
                 EXPECT_GT(v.collidingProved, 0) << "scale " << scale;
             else
@@ -244,6 +249,8 @@ TEST(GridFirst, AgreesWithBruteForceOnOmplAppProblems)
         const Verdicts v = expectAgreement(problem.scene, ContactSemantics::Solid,
                                            test::randomPoses(problem, std::size_t(test::cases(160)), rng));
         EXPECT_GT(v.freeProved + v.collidingProved, 0) << name;
+        if (v.colliding >= 20)
+            EXPECT_GT(v.witnessProved, v.colliding / 4) << name;
     }
 }
 

@@ -54,7 +54,7 @@ public:
     ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids, const std::vector<Vec3> &markers,
                   ClearanceGridSettings settings = {});
 
-    bool empty() const { return surfaceCode_.empty(); }
+    bool empty() const { return cellBytes_.empty(); }
     ClearanceSample at(const Vec3 &p) const;
 
     /// A triangle of the mesh that marked the cell holding p, or -1 when that cell is free, lies
@@ -70,7 +70,7 @@ public:
     std::size_t occupiedCells() const { return occupied_; }
     std::size_t memoryBytes() const
     {
-        return surfaceCode_.size() + markerSteps_.size() + 12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
+        return cellBytes_.size() + 12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
     }
     double buildSeconds() const { return buildSeconds_; }
 
@@ -86,11 +86,13 @@ private:
     int nx_ = 0, ny_ = 0, nz_ = 0;
     bool labelled_ = false;
     bool hasMarkers_ = false;
-    /// 0: occupied. 1..127: outside every solid, clearance >= (code - 1) cells.
-    /// 128..255: inside a solid, clearance >= (code - 128) cells.
-    std::vector<std::uint8_t> surfaceCode_;
-    /// Distance to the nearest marker, >= steps cells (saturating at 255).
-    std::vector<std::uint8_t> markerSteps_;
+    /// Per cell, `stride_` bytes side by side (one cache line holds both for a query):
+    /// - the surface code, 0: occupied; 1..127: outside every solid, clearance >= (code - 1)
+    ///   cells; 128..255: inside a solid, clearance >= (code - 128) cells;
+    /// - with markers (stride 2), the distance to the nearest marker, >= steps cells (saturating
+    ///   at 255).
+    std::vector<std::uint8_t> cellBytes_;
+    std::size_t stride_ = 1;
     /// Kept triangles: bit i % 64 of occupiedMask_[i / 64] marks occupied cell i; occupiedBefore_
     /// counts occupied cells of earlier words, so a cell's rank indexes occupiedTriangle_.
     std::vector<std::uint64_t> occupiedMask_;

@@ -29,6 +29,10 @@ struct GridFirstSettings
 ///   environment solid; or, for a closed robot, the point of an environment triangle nearest a
 ///   robot cover sphere's centre lies in a free cell of the robot's own grid (robot frame) inside
 ///   a robot solid. Either is a point of one object inside a solid of the other.
+/// - colliding (either semantics): a witness pair of triangles. For each leaf of the robot's cover
+///   whose centre falls in an occupied cell, the environment triangle kept for that cell is tested
+///   exactly (trianglesIntersect, on the corners as every checker places them) against the robot
+///   triangles of that leaf whose vertices are not all on one side of its plane.
 /// Everything else goes to the wrapped checker, which sets the answer, so answers are the wrapped
 /// checker's whatever the grid says (tested against bruteforce). Proximity queries use the same
 /// proof with each sphere grown by the slack; distance and contacts go straight to the wrapped one.
@@ -50,8 +54,11 @@ public:
     bool freeByGrid(const RigidTransform &worldFromRobot, double translationSlack = 0.0,
                     double radialSlack = 0.0) const;
     bool collidingByGrid(const RigidTransform &worldFromRobot) const;
+    bool collidingByWitness(const RigidTransform &worldFromRobot) const;
 
 private:
+    /// Fills leafStart_ and leafTriangles_ from cover_ and robot_.
+    void indexLeafTriangles();
     bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
     double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override
     {
@@ -75,5 +82,10 @@ private:
     ClearanceGrid grid_;
     ClearanceGrid robotGrid_;  ///< the robot's own grid (robot frame), with inside labels; closed robots only
     std::shared_ptr<const TriangleMesh> environment_;  ///< the grid's mesh (each face once)
+    std::shared_ptr<const TriangleMesh> robot_;        ///< the robot mesh, each face once (robot frame)
+    /// Per cover sphere i, the robot triangles that reach into it: leafTriangles_[leafStart_[i] ..
+    /// leafStart_[i + 1]) (empty for inner spheres).
+    std::vector<std::uint32_t> leafStart_;
+    std::vector<std::uint32_t> leafTriangles_;
 };
 }  // namespace hcd
