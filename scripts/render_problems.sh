@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Pictures of problems with verified paths: for each .cfg, NAME.png in OUT_DIR with the first of
 #   1. the path shipped beside the .cfg (NAME.path, as OMPL.app ships them), when hybridcd verifies it;
-#   2. a path solved by `hybridcd solve` into OUT_DIR/NAME.path, trying the problem's planners in turn.
+#   2. OUT_DIR/NAME.path left by an earlier run (or put there by hand), when hybridcd verifies it;
+#   3. a path solved by `hybridcd solve` into OUT_DIR/NAME.path, trying the problem's planners in turn.
+# OUT_DIR/index.md lists every problem with its picture and where its path came from.
 # Verified: every pose collision-free (`check`) and, for geometric problems, every motion between
 # consecutive poses certified free (`check-motion --verdict-only`). Problems whose meshes are missing
 # are listed with the file; a problem left without a verified path is drawn bare and reported; one
@@ -12,7 +14,8 @@
 #   Without problems: problems/*.cfg and, when present, OMPL.app's 2D/ and 3D/ problems
 #   ($HYBRIDCD_OMPLAPP_RESOURCES, else ../shared/omplapp-resources beside the source tree).
 #   $HYBRIDCD_CLI names the tool (default build/hybridcd); $SOLVE_TIME, when set, replaces every
-#   attempt's time limit in seconds (attempts_for below gives the per-problem planners and times).
+#   attempt's time limit in seconds (attempts_for below gives the per-problem planners and times);
+#   $RENDER_WIDTH and $RENDER_HEIGHT set the pictures' size in pixels (default 800 x 600).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 [ $# -ge 1 ] || { sed -n 3,15p "$0" >&2; exit 1; }
@@ -86,6 +89,7 @@ verify_path() {
 
 failed=0
 missing=()
+index=()
 for cfg in "${problems[@]}"; do
   name=$(basename "$cfg" .cfg)
   if [ -f "$cfg" ] && lacking=$(missing_meshes "$cfg") && [ -n "$lacking" ]; then
@@ -104,6 +108,15 @@ for cfg in "${problems[@]}"; do
       note="path $shipped (shipped), verified: $verdict"
     else
       note="shipped path $shipped rejected ($verdict); "
+    fi
+  fi
+  earlier=$out/$name.path
+  if [ -z "$path" ] && [ -f "$earlier" ] && [ "$earlier" != "$shipped" ]; then
+    if verdict=$(verify_path "$cfg" "$earlier" "$kinodynamic"); then
+      path=$earlier
+      note="${note}path $earlier (from an earlier run), verified: $verdict"
+    else
+      note="${note}earlier path $earlier rejected ($verdict); "
     fi
   fi
   if [ -z "$path" ] && [ -f "$cfg" ]; then
@@ -131,9 +144,14 @@ for cfg in "${problems[@]}"; do
       failed=1
     fi
   fi
-  if "$cli" render "$cfg" ${path:+--path "$path"} --out "$out/$name.png" >/dev/null 2>"$out/$name.render.txt"; then
-    rm -f "$out/$name.render.txt"
+  if "$cli" render "$cfg" ${path:+--path "$path"} ${RENDER_WIDTH:+--width "$RENDER_WIDTH"} \
+    ${RENDER_HEIGHT:+--height "$RENDER_HEIGHT"} --out "$out/$name.png" >/dev/null 2>"$out/$name.render.txt"; then
+    rm -f "$out/$name.render.txt" "$out/$name.solve.txt"
     echo "$name: $out/$name.png, $note"
+    # The index names files relative to OUT_DIR and to the problem's folder.
+    short=${note//$out\//}
+    short=${short//$(dirname "$cfg")\//}
+    index+=("| ![$name]($name.png) | $name | ${short//|/\\|} |")
   else
     echo "$name: not drawn: $(tail -n 1 "$out/$name.render.txt")" >&2
     failed=1
@@ -142,4 +160,19 @@ done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "render_problems: not drawn, meshes missing: ${missing[*]}" >&2
 fi
+{
+  echo "# Problems and their paths"
+  echo
+  echo "Drawn by \`scripts/render_problems.sh\` (green: start, red: goal, the path's line and robots along"
+  echo "it). Every path was verified before it was drawn: each pose collision-free and, for geometric"
+  echo "problems, each motion between consecutive poses certified free by continuous checking."
+  echo
+  echo "| picture | problem | path |"
+  echo "|---|---|---|"
+  printf '%s\n' "${index[@]}"
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo
+    echo "Not drawn, meshes missing: ${missing[*]}."
+  fi
+} >"$out/index.md.$$" && mv "$out/index.md.$$" "$out/index.md"
 exit $failed

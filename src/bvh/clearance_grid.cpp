@@ -77,6 +77,17 @@ int stepsBelow(double squared, int saturate)
     const double steps = std::floor(std::sqrt(squared) - kSqrt3 - 1e-9);
     return steps <= 0.0 ? 0 : int(std::min<double>(steps, saturate));
 }
+
+/// Half cells between the centre of a cell and any point of a seed cell whose centres are
+/// sqrt(squared) cells apart (the seed's points may be half a cell diagonal off its centre); a query
+/// point subtracts its own distance from its cell's centre.
+int halfStepsBelow(double squared, int saturate)
+{
+    if (squared >= kUnreached)
+        return saturate;
+    const double halfSteps = std::floor(2.0 * (std::sqrt(squared) - 0.5 * kSqrt3) - 1e-9);
+    return halfSteps <= 0.0 ? 0 : int(std::min<double>(halfSteps, saturate));
+}
 }  // namespace
 
 ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids, const std::vector<Vec3> &markers,
@@ -211,8 +222,8 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     cellBytes_.resize(cellCount * stride_);
     for (std::size_t i = 0; i < cellCount; ++i)
         cellBytes_[i * stride_] = !freeCell[i]    ? 0
-                                  : insideCell[i] ? std::uint8_t(128 + stepsBelow(squared[i], 127))
-                                                  : std::uint8_t(1 + stepsBelow(squared[i], 126));
+                                  : insideCell[i] ? std::uint8_t(128 + halfStepsBelow(squared[i], 127))
+                                                  : std::uint8_t(1 + halfStepsBelow(squared[i], 126));
 
     if (hasMarkers_)
     {
@@ -270,8 +281,10 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         return s;
     }
     const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
-    const std::int64_t cell = cellOf(p);
-    if (cell < 0)
+    const double fx = (p.x() - origin_.x()) * inverseCellSize_;
+    const double fy = (p.y() - origin_.y()) * inverseCellSize_;
+    const double fz = (p.z() - origin_.z()) * inverseCellSize_;
+    if (!(fx >= 0.0 && fy >= 0.0 && fz >= 0.0 && fx < nx_ && fy < ny_ && fz < nz_))
     {
         // Beyond the grid: the mesh's bounding box bounds everything, solids and markers included.
         const Vec3 gap = (meshMin_ - p).cwiseMax(p - meshMax_).cwiseMax(Vec3::Zero());
@@ -281,12 +294,16 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         s.markerClearance = hasMarkers_ ? s.clearance : std::numeric_limits<double>::infinity();
         return s;
     }
-    const auto i = std::size_t(cell);
+    const std::size_t ix = std::size_t(fx), iy = std::size_t(fy), iz = std::size_t(fz);
+    const std::size_t i = (iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix;
     const std::uint8_t code = cellBytes_[i * stride_];
     if (code != 0)
     {
         const bool inside = code >= 128;
-        s.clearance = std::max(0.0, (inside ? code - 128 : code - 1) * cellSize_ - slack);
+        // p's distance from its cell's centre, in world units (its rounding is within `slack`).
+        const double ox = fx - double(ix) - 0.5, oy = fy - double(iy) - 0.5, oz = fz - double(iz) - 0.5;
+        const double offCentre = std::sqrt(ox * ox + oy * oy + oz * oz) * cellSize_;
+        s.clearance = std::max(0.0, (inside ? code - 128 : code - 1) * 0.5 * cellSize_ - offCentre - slack);
         s.inside = labelled_ && inside;
         s.outside = labelled_ && !inside;
     }

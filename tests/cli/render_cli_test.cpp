@@ -302,6 +302,25 @@ TEST(RenderCli, ScriptDrawsEveryProblemWithASolvedPath)
             differing += std::memcmp(&with.rgb[i], &without.rgb[i], 3) != 0;
         EXPECT_GT(differing, 500u) << name;
     }
+    // The index lists each problem with its picture and where its path came from.
+    std::ifstream indexFile(folder + "/index.md");
+    std::stringstream indexText;
+    indexText << indexFile.rdbuf();
+    const std::string index = indexText.str();
+    for (const char *name : {"corridor_2d", "window_3d"})
+        EXPECT_NE(index.find(std::string("| ![") + name + "](" + name + ".png) | " + name + " | path solved into " +
+                             name + ".path"),
+                  std::string::npos)
+            << index;
+    // A second run keeps the verified paths of the first (no solving) and draws at the size asked for.
+    const CliRun again = test::runShell("RENDER_WIDTH=200 RENDER_HEIGHT=150 HYBRIDCD_CLI=" + std::string(HYBRIDCD_CLI) +
+                                        " bash " + test::sourcePath("scripts/render_problems.sh") + " " + folder + " " +
+                                        test::sourcePath("problems/corridor_2d.cfg"));
+    ASSERT_EQ(again.status, 0) << again.output;
+    EXPECT_NE(again.output.find("(from an earlier run), verified:"), std::string::npos) << again.output;
+    const Decoded small = decodePng(folder + "/corridor_2d.png");
+    EXPECT_EQ(small.width, 200);
+    EXPECT_EQ(small.height, 150);
     // A problem that cannot be loaded is reported, and the script fails.
     const CliRun bad =
         test::runShell("HYBRIDCD_CLI=" + std::string(HYBRIDCD_CLI) + " bash " +

@@ -40,11 +40,12 @@ struct ClearanceSample
 /// Cells are closed cubes of side `cellSize()`. A cell is occupied when a triangle may touch it
 /// (bounding box and plane tests with an outward margin, so never missed). For a free cell, the
 /// squared distance in cells to the nearest occupied cell centre (exact Euclidean distance
-/// transform on integers) gives the bound (d - sqrt(3)) * cellSize on the distance from any point
-/// of the cell to the surface. Face-adjacent free cells are on the same side of every surface, so
-/// one exact point-in-solid test per connected free region labels all its cells.
-/// Marker points (e.g. one vertex per component) get the same distance bound in a second channel.
-/// Immutable after construction; safe to query from many threads.
+/// transform on integers) gives the bound (d - sqrt(3)/2) * cellSize on the distance from the
+/// cell's centre to the surface, kept in half cells; a point p of the cell subtracts its own
+/// distance from the centre (at most sqrt(3)/2 cells). Face-adjacent free cells are on the same side of every surface,
+/// so one exact point-in-solid test per connected free region labels all its cells. Marker points (e.g. one vertex per
+/// component) get the same distance bound in a second channel. Immutable after construction; safe to query from many
+/// threads.
 class ClearanceGrid
 {
 public:
@@ -87,8 +88,8 @@ private:
     bool labelled_ = false;
     bool hasMarkers_ = false;
     /// Per cell, `stride_` bytes side by side (one cache line holds both for a query):
-    /// - the surface code, 0: occupied; 1..127: outside every solid, clearance >= (code - 1)
-    ///   cells; 128..255: inside a solid, clearance >= (code - 128) cells;
+    /// - the surface code, 0: occupied; 1..127: outside every solid, the cell's centre at least
+    ///   (code - 1) half cells from the surface; 128..255: inside a solid, (code - 128) half cells;
     /// - with markers (stride 2), the distance to the nearest marker, >= steps cells (saturating
     ///   at 255).
     std::vector<std::uint8_t> cellBytes_;
