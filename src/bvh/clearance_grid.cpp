@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/bvh/clearance_grid.h"
 
-#include "hybridcd/geometry/triangle_distance.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -129,8 +127,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     // Occupied cells: the triangle's bounding box, grown for rounding, cut by a slab around its
     // plane as wide as the cell's projection on the normal. Marks a superset of touched cells.
     std::vector<double> squared(cellCount, kUnreached);
-    // (cell, triangle) for every cell a triangle marks, when triangles are kept.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> marks;
+    std::vector<std::uint32_t> firstTriangle(settings.keepTriangles ? cellCount : 0, ~0u);
     const double boxSlack = 1e-9 * magnitude;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
@@ -153,8 +150,8 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                     {
                         const std::size_t i = cellIndex(x, y, z);
                         squared[i] = 0.0;
-                        if (settings.keepTriangles)
-                            marks.emplace_back(std::uint32_t(i), std::uint32_t(t));
+                        if (settings.keepTriangles && firstTriangle[i] == ~0u)
+                            firstTriangle[i] = std::uint32_t(t);
                     }
                 }
     }
@@ -176,21 +173,10 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             if (!freeCell[i])
             {
                 occupiedMask_[i / 64] |= std::uint64_t(1) << (i % 64);
+                occupiedTriangle_.push_back(firstTriangle[i]);
                 ++count;
             }
         }
-        // Each occupied cell's triangles, in rank order (the marks come cell by cell per triangle).
-        std::sort(marks.begin(), marks.end());
-        occupiedStart_.assign(std::size_t(count) + 1, 0);
-        occupiedTriangle_.reserve(marks.size());
-        std::uint32_t rank = 0;
-        for (std::size_t k = 0; k < marks.size(); ++k)
-        {
-            if (k > 0 && marks[k].first != marks[k - 1].first)
-                occupiedStart_[++rank] = std::uint32_t(occupiedTriangle_.size());
-            occupiedTriangle_.push_back(marks[k].second);
-        }
-        occupiedStart_[count] = std::uint32_t(occupiedTriangle_.size());
     }
     distanceTransform3d(squared, nx_, ny_, nz_);
 
@@ -282,75 +268,7 @@ std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
     const std::uint64_t bit = std::uint64_t(1) << (i % 64);
     if (!(word & bit))
         return -1;
-    return occupiedTriangle_[occupiedStart_[occupiedBefore_[i / 64] +
-                                            std::size_t(__builtin_popcountll(word & (bit - 1)))]];
-}
-
-BallClearance ClearanceGrid::ballClearance(const TriangleMesh &mesh, const Vec3 &centre, double radius,
-                                           int maxTests) const
-{
-    BallClearance result;
-    if (occupiedMask_.empty() || !centre.allFinite() || !(radius >= 0.0))
-        return result;
-    // Grown for rounding in the distances and in the cell range, as at() is.
-    const double reach = radius + roundingSlack_ + 1e-9 * centre.cwiseAbs().maxCoeff();
-    int lo[3], hi[3];
-    for (int axis = 0; axis < 3; ++axis)
-    {
-        const int count = axis == 0 ? nx_ : axis == 1 ? ny_ : nz_;
-        const double a = std::floor((centre[axis] - reach - origin_[axis]) * inverseCellSize_);
-        const double b = std::floor((centre[axis] + reach - origin_[axis]) * inverseCellSize_);
-        lo[axis] = int(std::clamp(a, 0.0, double(count - 1)));
-        hi[axis] = int(std::clamp(b, 0.0, double(count - 1)));
-        if (b < 0.0 || a > double(count - 1))
-            lo[axis] = 1, hi[axis] = 0;  // the ball misses the grid on this axis: no cell to visit
-    }
-    const double reachSquared = reach * reach;
-    std::uint32_t recent[16];
-    std::fill(std::begin(recent), std::end(recent), ~0u);
-    int tests = 0;
-    bool sided = false;
-    for (int z = lo[2]; z <= hi[2]; ++z)
-        for (int y = lo[1]; y <= hi[1]; ++y)
-            for (int x = lo[0]; x <= hi[0]; ++x)
-            {
-                const std::size_t i =
-                    (std::size_t(z) * std::size_t(ny_) + std::size_t(y)) * std::size_t(nx_) + std::size_t(x);
-                const std::uint64_t word = occupiedMask_[i / 64];
-                const std::uint64_t bit = std::uint64_t(1) << (i % 64);
-                if (!(word & bit))
-                {
-                    // A free cell whose centre is in the ball: its side is the ball's, once the
-                    // ball is known to hold no surface.
-                    if (!sided && labelled_ &&
-                        (origin_ + cellSize_ * Vec3(x + 0.5, y + 0.5, z + 0.5) - centre).squaredNorm() <=
-                            radius * radius)
-                    {
-                        sided = true;
-                        result.inside = cellBytes_[i * stride_] >= 128;
-                        result.outside = !result.inside;
-                    }
-                    continue;
-                }
-                const std::size_t rank = occupiedBefore_[i / 64] + std::size_t(__builtin_popcountll(word & (bit - 1)));
-                for (std::uint32_t k = occupiedStart_[rank]; k < occupiedStart_[rank + 1]; ++k)
-                {
-                    const std::uint32_t t = occupiedTriangle_[k];
-                    if (recent[t % 16] == t)
-                        continue;  // tested already, and clear
-                    if (++tests > maxTests)
-                        return BallClearance{};
-                    const Vec3 q =
-                        closestPointOnTriangle(centre, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2));
-                    if ((q - centre).squaredNorm() <= reachSquared)
-                        return BallClearance{};
-                    recent[t % 16] = t;
-                }
-            }
-    result.clear = true;
-    if (!sided)
-        result.inside = result.outside = false;
-    return result;
+    return occupiedTriangle_[occupiedBefore_[i / 64] + std::size_t(__builtin_popcountll(word & (bit - 1)))];
 }
 
 ClearanceSample ClearanceGrid::at(const Vec3 &p) const

@@ -94,24 +94,17 @@ std::vector<HierarchyReport> GridFirstChecker::hierarchies(bool withVolumeRatios
     return reports;
 }
 
-bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
-                                  bool exactNearSurface) const
+bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double translationSlack,
+                                  double radialSlack) const
 {
     if (grid_.empty() || cover_.empty() || !worldFromRobot.isFinite())
         return false;
     // Rounding of R * c + t, relative to the magnitudes involved.
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     const auto clears = [&](const CoverSphere &s) {
-        const Vec3 centre = worldFromRobot.apply(s.center);
-        const ClearanceSample sample = grid_.at(centre);
+        const ClearanceSample sample = grid_.at(worldFromRobot.apply(s.center));
         const double slack = translationSlack + radialSlack * (s.center.norm() + s.radius);
-        if (sample.clearance > s.radius + slack + rounding && (!solid_ || sample.outside))
-            return true;
-        if (s.firstChild >= 0 || !exactNearSurface)
-            return false;  // an inner sphere's children are smaller: cheaper than an exact test
-        // A leaf the grid's bound cannot clear: exact distances to the triangles near it.
-        const BallClearance ball = grid_.ballClearance(*environment_, centre, s.radius + slack + rounding, 48);
-        return ball.clear && (!solid_ || ball.outside);
+        return sample.clearance > s.radius + slack + rounding && (!solid_ || sample.outside);
     };
     // The root sphere holds the whole robot, solid included (a ball is convex): when it clears the
     // surface no environment component can lie inside the robot either.
@@ -222,14 +215,10 @@ bool GridFirstChecker::collidingByWitness(const RigidTransform &worldFromRobot) 
 
 bool GridFirstChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
-    // The cheap proofs first, then exact distances near the surface (which a colliding pose would
-    // pay for nothing), then the hierarchy.
-    if (freeByGrid(worldFromRobot, 0.0, 0.0, false))
+    if (freeByGrid(worldFromRobot))
         return false;
     if (collidingByGrid(worldFromRobot) || collidingByWitness(worldFromRobot))
         return true;
-    if (freeByGrid(worldFromRobot))
-        return false;
     return exact_->collides(worldFromRobot, context);
 }
 

@@ -170,55 +170,6 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
     }
 }
 
-TEST(ClearanceGrid, BallClearanceIsExactDistanceAndSide)
-{
-    // ballClearance against brute-force point-to-mesh distances and point-in-solid, with radii from
-    // far below to far above the distance, at three scales; balls that touch a face exactly too.
-    test::TestRandom rng(test::seeded(15));
-    for (double scale : {1e-6, 1.0, 1e6})
-    {
-        const auto mesh = shared(clutter(rng, scale));
-        const SolidQuery solids(mesh);
-        ClearanceGridSettings settings;
-        settings.maxCells = 1 << 15;
-        settings.margin = 0.3 * scale;
-        settings.keepTriangles = true;
-        const ClearanceGrid grid(*mesh, &solids, {}, settings);
-        std::uniform_real_distribution<double> u(-1.6, 1.6), fraction(0.0, 1.3);
-        constexpr int kBalls = 2000;
-        int cleared = 0, clearedNearSurface = 0, sided = 0;
-        for (int i = 0; i < kBalls; ++i)
-        {
-            const Vec3 c = scale * Vec3(u(rng), u(rng), u(rng));
-            const double d = pointMeshDistance(*mesh, c);
-            const double radius = fraction(rng) * d;
-            const BallClearance ball = grid.ballClearance(*mesh, c, radius, 1000);
-            ASSERT_FALSE(ball.inside && ball.outside);
-            if (!ball.clear)
-                continue;
-            ASSERT_LT(radius, d) << "scale " << scale << " centre " << c.transpose();
-            ++cleared;
-            clearedNearSurface += radius > d - 2.0 * grid.cellSize();
-            if (ball.inside || ball.outside)
-            {
-                ASSERT_EQ(ball.inside, solids.insideAnySolid(c)) << "scale " << scale;
-                ++sided;
-            }
-        }
-        // Not vacuous: most balls short of the surface are cleared, also within two cells of it,
-        // where the grid's own bound cannot help.
-        EXPECT_GT(cleared, kBalls / 2) << "scale " << scale;
-        EXPECT_GT(clearedNearSurface, kBalls / 10) << "scale " << scale;
-        EXPECT_GT(sided, cleared / 2) << "scale " << scale;
-        // A ball whose radius is the distance to a face touches it: never cleared.
-        const Vec3 corner = mesh->corner(0, 0), other = mesh->corner(0, 1), third = mesh->corner(0, 2);
-        const Vec3 normal = (other - corner).cross(third - corner).normalized();
-        const Vec3 onFace = (corner + other + third) / 3.0;
-        const Vec3 c = onFace + 0.01 * scale * normal;
-        EXPECT_FALSE(grid.ballClearance(*mesh, c, pointMeshDistance(*mesh, c), 1000).clear);
-    }
-}
-
 TEST(ClearanceGrid, PointsOnTheSurfaceGetNoClearanceAndNoSide)
 {
     const auto mesh = shared(test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1)));

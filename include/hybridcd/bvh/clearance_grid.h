@@ -18,18 +18,8 @@ struct ClearanceGridSettings
     std::size_t maxCells = std::size_t(1) << 19;
     /// The grid covers the mesh's bounding box grown by this much on every side (world units).
     double margin = 0.0;
-    /// Keep, for each occupied cell, the triangles that marked it (triangleNear(), ballClearance()).
+    /// Keep, for each occupied cell, one triangle that marked it (triangleNear()).
     bool keepTriangles = false;
-};
-
-/// What ballClearance() proved about a ball.
-struct BallClearance
-{
-    /// No triangle of the mesh comes within the radius of the centre.
-    bool clear = false;
-    /// With `clear`: the ball lies outside every closed solid, or inside one (neither when unknown).
-    bool outside = false;
-    bool inside = false;
 };
 
 /// What the grid knows about one point (world frame).
@@ -72,13 +62,6 @@ public:
     /// beyond the grid, or triangles were not kept. Near p: within the cell's diagonal of it.
     std::int64_t triangleNear(const Vec3 &p) const;
 
-    /// The exact test behind the grid's bound, for one ball (world frame): every triangle kept in the
-    /// cells the ball reaches is farther than `radius` from `centre` (exact point-to-triangle
-    /// distance less its rounding), after at most `maxTests` triangles; otherwise nothing is proved.
-    /// `mesh` is the mesh the grid was built on. The side comes from a free cell whose centre lies in
-    /// the ball: a ball that holds no surface has all its points on one side of every solid.
-    BallClearance ballClearance(const TriangleMesh &mesh, const Vec3 &centre, double radius, int maxTests) const;
-
     /// How far beyond every free cell the surface is known not to come (world units): points within
     /// it of a free cell are on the cell's side of every solid.
     double certainMargin() const { return roundingSlack_; }
@@ -88,7 +71,7 @@ public:
     std::size_t occupiedCells() const { return occupied_; }
     std::size_t memoryBytes() const
     {
-        return cellBytes_.size() + 12 * occupiedMask_.size() + 4 * (occupiedStart_.size() + occupiedTriangle_.size());
+        return cellBytes_.size() + 12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
     }
     double buildSeconds() const { return buildSeconds_; }
 
@@ -112,12 +95,9 @@ private:
     std::vector<std::uint8_t> cellBytes_;
     std::size_t stride_ = 1;
     /// Kept triangles: bit i % 64 of occupiedMask_[i / 64] marks occupied cell i; occupiedBefore_
-    /// counts occupied cells of earlier words, so a cell's rank indexes occupiedStart_.
+    /// counts occupied cells of earlier words, so a cell's rank indexes occupiedTriangle_.
     std::vector<std::uint64_t> occupiedMask_;
     std::vector<std::uint32_t> occupiedBefore_;
-    /// Triangles of the occupied cell of rank r: occupiedTriangle_[occupiedStart_[r] ..
-    /// occupiedStart_[r + 1]).
-    std::vector<std::uint32_t> occupiedStart_;
     std::vector<std::uint32_t> occupiedTriangle_;
     std::size_t occupied_ = 0;
     double buildSeconds_ = 0.0;

@@ -20,12 +20,11 @@ struct GridFirstSettings
 };
 
 /// Two proofs before the exact checker:
-/// - free: a cut of the robot's cover tree (root first, children of a sphere that fails) lies in
-///   grid cells whose clearance exceeds its radius, or, for a leaf, farther than its radius from
-///   every triangle of the cells it reaches (exact distances; tried after the colliding proofs),
-///   so no robot triangle touches the environment; with solid semantics, the cut lies outside
-///   every closed environment solid and, for a closed robot, no environment component's first
-///   vertex lies within the robot's reach of its origin (so none is inside the robot).
+/// - free: a cut of the robot's cover tree (root first, children of a sphere that fails) lies in grid cells whose
+/// clearance exceeds its radius (so no
+///   robot triangle touches the environment) and, with solid semantics, on the outside of every
+///   closed environment solid; for a closed robot, no environment component's first vertex lies
+///   within the robot's reach of its origin (so none is inside the robot). Then the robot is free.
 /// - colliding (solid semantics only): a robot vertex lies in a free grid cell inside a closed
 ///   environment solid; or, for a closed robot, the point of an environment triangle nearest a
 ///   robot cover sphere's centre lies in a free cell of the robot's own grid (robot frame) inside
@@ -52,10 +51,8 @@ public:
     const std::vector<CoverSphere> &robotCover() const { return cover_; }
 
     /// The grid's own verdict: true proves free, false proves nothing (also for `collidingByGrid`).
-    /// With `exactNearSurface`, a leaf sphere the grid's bound cannot clear is tested exactly
-    /// against the triangles of the cells it reaches (ClearanceGrid::ballClearance).
-    bool freeByGrid(const RigidTransform &worldFromRobot, double translationSlack = 0.0, double radialSlack = 0.0,
-                    bool exactNearSurface = true) const;
+    bool freeByGrid(const RigidTransform &worldFromRobot, double translationSlack = 0.0,
+                    double radialSlack = 0.0) const;
     bool collidingByGrid(const RigidTransform &worldFromRobot) const;
     bool collidingByWitness(const RigidTransform &worldFromRobot) const;
 
