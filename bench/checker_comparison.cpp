@@ -156,10 +156,10 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
         for (const std::string &name : names)
         {
             std::string row = rows[r++];
-            const auto ratioTo = [&](std::map<std::string, double> &m) {
+            const auto ratioTo = [&](const std::map<std::string, double> &m) {
                 std::ostringstream ratio;
                 if (m.count("fcl"))
-                    ratio << std::fixed << std::setprecision(2) << m[name] / m["fcl"];
+                    ratio << std::fixed << std::setprecision(2) << m.at(name) / m.at("fcl");
                 else
                     ratio << "-";
                 return ratio.str();

@@ -68,25 +68,15 @@ void distanceTransform3d(std::vector<double> &grid, int nx, int ny, int nz)
     pass(nz, nx, ny, [&](int q, int a, int b) { return at(a, b, q); });
 }
 
-/// Whole cells between any point of a cell and any point of a seed cell whose centres are
-/// sqrt(squared) cells apart: the centres may each be half a cell diagonal off.
-int stepsBelow(double squared, int saturate)
+/// The distance from a point of a cell to any point of a seed cell whose centres are
+/// sqrt(squared) cells apart, in whole units of 1 / unitsPerCell cells, rounded down: the query
+/// point may be `queryOffset` cells off its cell's centre, the seed's points half a cell diagonal.
+int unitsBelow(double squared, double queryOffset, int unitsPerCell, int saturate)
 {
     if (squared >= kUnreached)
         return saturate;
-    const double steps = std::floor(std::sqrt(squared) - kSqrt3 - 1e-9);
-    return steps <= 0.0 ? 0 : int(std::min<double>(steps, saturate));
-}
-
-/// Half cells between the centre of a cell and any point of a seed cell whose centres are
-/// sqrt(squared) cells apart (the seed's points may be half a cell diagonal off its centre); a query
-/// point subtracts its own distance from its cell's centre.
-int halfStepsBelow(double squared, int saturate)
-{
-    if (squared >= kUnreached)
-        return saturate;
-    const double halfSteps = std::floor(2.0 * (std::sqrt(squared) - 0.5 * kSqrt3) - 1e-9);
-    return halfSteps <= 0.0 ? 0 : int(std::min<double>(halfSteps, saturate));
+    const double units = std::floor(unitsPerCell * (std::sqrt(squared) - queryOffset - 0.5 * kSqrt3) - 1e-9);
+    return units <= 0.0 ? 0 : int(std::min<double>(units, saturate));
 }
 }  // namespace
 
@@ -222,8 +212,8 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     cellBytes_.resize(cellCount * stride_);
     for (std::size_t i = 0; i < cellCount; ++i)
         cellBytes_[i * stride_] = !freeCell[i]    ? 0
-                                  : insideCell[i] ? std::uint8_t(128 + halfStepsBelow(squared[i], 127))
-                                                  : std::uint8_t(1 + halfStepsBelow(squared[i], 126));
+                                  : insideCell[i] ? std::uint8_t(128 + unitsBelow(squared[i], 0.0, 2, 127))
+                                                  : std::uint8_t(1 + unitsBelow(squared[i], 0.0, 2, 126));
 
     if (hasMarkers_)
     {
@@ -241,26 +231,28 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
         }
         distanceTransform3d(squared, nx_, ny_, nz_);
         for (std::size_t i = 0; i < cellCount; ++i)
-            cellBytes_[i * 2 + 1] = std::uint8_t(stepsBelow(squared[i], 255));
+            cellBytes_[i * 2 + 1] = std::uint8_t(unitsBelow(squared[i], 0.5 * kSqrt3, 1, 255));
     }
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::int64_t ClearanceGrid::cellOf(const Vec3 &p) const
+ClearanceGrid::CellPoint ClearanceGrid::locate(const Vec3 &p) const
 {
-    const double fx = (p.x() - origin_.x()) * inverseCellSize_;
-    const double fy = (p.y() - origin_.y()) * inverseCellSize_;
-    const double fz = (p.z() - origin_.z()) * inverseCellSize_;
-    if (!(fx >= 0.0 && fy >= 0.0 && fz >= 0.0 && fx < nx_ && fy < ny_ && fz < nz_))
-        return -1;
-    return std::int64_t((std::size_t(fz) * ny_ + std::size_t(fy)) * nx_ + std::size_t(fx));
+    const Vec3 f = (p - origin_) * inverseCellSize_;
+    CellPoint c;
+    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < nx_ && f.y() < ny_ && f.z() < nz_))
+        return c;
+    const std::size_t ix = std::size_t(f.x()), iy = std::size_t(f.y()), iz = std::size_t(f.z());
+    c.index = std::int64_t((iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix);
+    c.offCentre = (f - Vec3(double(ix) + 0.5, double(iy) + 0.5, double(iz) + 0.5)).norm();
+    return c;
 }
 
 std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
 {
     if (occupiedMask_.empty())
         return -1;
-    const std::int64_t cell = cellOf(p);
+    const std::int64_t cell = locate(p).index;
     if (cell < 0)
         return -1;
     const auto i = std::size_t(cell);
@@ -281,10 +273,8 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         return s;
     }
     const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
-    const double fx = (p.x() - origin_.x()) * inverseCellSize_;
-    const double fy = (p.y() - origin_.y()) * inverseCellSize_;
-    const double fz = (p.z() - origin_.z()) * inverseCellSize_;
-    if (!(fx >= 0.0 && fy >= 0.0 && fz >= 0.0 && fx < nx_ && fy < ny_ && fz < nz_))
+    const CellPoint cell = locate(p);
+    if (cell.index < 0)
     {
         // Beyond the grid: the mesh's bounding box bounds everything, solids and markers included.
         const Vec3 gap = (meshMin_ - p).cwiseMax(p - meshMax_).cwiseMax(Vec3::Zero());
@@ -294,16 +284,13 @@ ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         s.markerClearance = hasMarkers_ ? s.clearance : std::numeric_limits<double>::infinity();
         return s;
     }
-    const std::size_t ix = std::size_t(fx), iy = std::size_t(fy), iz = std::size_t(fz);
-    const std::size_t i = (iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix;
+    const auto i = std::size_t(cell.index);
     const std::uint8_t code = cellBytes_[i * stride_];
     if (code != 0)
     {
         const bool inside = code >= 128;
-        // p's distance from its cell's centre, in world units (its rounding is within `slack`).
-        const double ox = fx - double(ix) - 0.5, oy = fy - double(iy) - 0.5, oz = fz - double(iz) - 0.5;
-        const double offCentre = std::sqrt(ox * ox + oy * oy + oz * oz) * cellSize_;
-        s.clearance = std::max(0.0, (inside ? code - 128 : code - 1) * 0.5 * cellSize_ - offCentre - slack);
+        // Less p's own distance from its cell's centre (its rounding is within `slack`).
+        s.clearance = std::max(0.0, ((inside ? code - 128 : code - 1) * 0.5 - cell.offCentre) * cellSize_ - slack);
         s.inside = labelled_ && inside;
         s.outside = labelled_ && !inside;
     }

@@ -42,10 +42,11 @@ struct ClearanceSample
 /// squared distance in cells to the nearest occupied cell centre (exact Euclidean distance
 /// transform on integers) gives the bound (d - sqrt(3)/2) * cellSize on the distance from the
 /// cell's centre to the surface, kept in half cells; a point p of the cell subtracts its own
-/// distance from the centre (at most sqrt(3)/2 cells). Face-adjacent free cells are on the same side of every surface,
-/// so one exact point-in-solid test per connected free region labels all its cells. Marker points (e.g. one vertex per
-/// component) get the same distance bound in a second channel. Immutable after construction; safe to query from many
-/// threads.
+/// distance from the centre (at most sqrt(3)/2 cells). Face-adjacent free cells are on the same
+/// side of every surface, so one exact point-in-solid test per connected free region labels all
+/// its cells. Marker points (e.g. one vertex per component) get a distance bound in a second
+/// channel, in whole cells from any point of the cell. Immutable after construction; safe to
+/// query from many threads.
 class ClearanceGrid
 {
 public:
@@ -76,8 +77,14 @@ public:
     double buildSeconds() const { return buildSeconds_; }
 
 private:
-    /// Index of the cell holding p, or -1 beyond the grid (or for a non-finite p).
-    std::int64_t cellOf(const Vec3 &p) const;
+    /// The cell holding a point: its index (-1 beyond the grid, or for a non-finite point) and the
+    /// point's distance from the cell's centre, in cells.
+    struct CellPoint
+    {
+        std::int64_t index = -1;
+        double offCentre = 0.0;
+    };
+    CellPoint locate(const Vec3 &p) const;
 
     Vec3 origin_ = Vec3::Zero();
     Vec3 meshMin_ = Vec3::Zero(), meshMax_ = Vec3::Zero();
