@@ -17,6 +17,7 @@ LEVELS = [
     ["bv", "narrowphase"],    # bounding volumes; convex pieces and linear programs
     ["bvh"],                  # volume trees over any bounding volume
     ["query", "io"],          # collision checkers; problem files and meshes
+    ["scene"],                # scenes of many bodies: broad phase, pair checks, motions
     ["ompl", "fcl", "render"],  # OMPL adapters; FCL as a checker; pictures and glTF scenes
     ["planners"],             # OMPL's geometric and control planners by OMPL.app's names
     ["cli"],                  # the hybridcd tool (src/ only)

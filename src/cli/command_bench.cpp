@@ -3,15 +3,19 @@
 // as an OMPL benchmark log (readable by ompl_benchmark_statistics), optionally one shard of many.
 #include "command_line.h"
 #include "commands.h"
+#include "command_scene.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 #include "hybridcd/ompl/control_problem.h"
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/ompl/scene_planning.h"
+#include "hybridcd/scene/problem_bodies.h"
 #include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_catalogue.h"
 
+#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -68,6 +72,7 @@ struct CheckerSlot
     std::string label;  // "obb+continuous", "fcl+discrete(0.01)": unique within a benchmark
     std::shared_ptr<const CollisionChecker> instance;
     std::shared_ptr<StateValidityChecker> validity;
+    std::shared_ptr<const Scene> scene;  ///< scene problems: the scene checked with `checker`
 };
 
 // OMPL's default validity-checking resolution (a fraction of the state space's extent), which
@@ -123,14 +128,19 @@ std::vector<MotionCheck> motionsOf(const CommandLine &cl)
 // The checker/motion pairs to compare: every --checker with every --motion, then OMPL.app's own
 // set-up (FCL state checks, OMPL's DiscreteMotionValidator; for kinodynamic problems, checks at the
 // propagation steps only) unless --baseline none or already listed.
-std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCatalogue &checkers, bool kinodynamic)
+std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCatalogue &checkers, bool kinodynamic,
+                                         bool scene)
 {
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::vector<std::string> names = checkerNamesOf(cl, checkers, options);
     const std::vector<MotionCheck> motions = motionsOf(cl);
-    const std::string baseline = cl.text("baseline", "omplapp");
+    // OMPL.app has no scenes of several robots: there is no set-up of its to compare with.
+    const std::string baseline = cl.text("baseline", scene ? "none" : "omplapp");
     if (baseline != "omplapp" && baseline != "none")
         throw UsageError("option --baseline expects omplapp or none, got '" + baseline + "'");
+    if (scene && baseline == "omplapp")
+        throw UsageError("--baseline omplapp is OMPL.app's set-up of one robot; a scene problem (robot.K, "
+                         "obstacle.K) has none: compare --checker NAME,... and --motion continuous,discrete");
 
     std::vector<CheckerSlot> slots;
     for (const std::string &name : names)
@@ -155,6 +165,92 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
             slots.push_back({"fcl", MotionCheck::Discrete, {}, label, nullptr, nullptr});
     }
     return slots;
+}
+struct SceneBenchRun
+{
+    double timeLimit, memoryLimit;
+    unsigned shardRuns, shardIndex, shardCount;
+    long long totalRuns;
+    bool seeded;
+    std::uint_fast32_t baseSeed, seed;
+    std::string out;
+};
+
+// A scene problem: every robot at once on the compound space; each configuration a scene whose
+// mesh pairs use its checker, with continuous (SceneMotionValidator) or discrete motion checks.
+int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<CheckerSlot> &slots,
+               const std::vector<PlannerRequest> &requests, const SceneBenchRun &run)
+{
+    const ProblemConfig &cfg = problem.config;
+    for (CheckerSlot &slot : slots)
+    {
+        slot.scene = makeProblemScene(problem, sceneOptionsOf(slot.checker, slot.options));
+        requireFreeEnds(problem, *slot.scene);
+    }
+    ScenePlanningProblem planning = makeScenePlanningProblem(problem, slots.front().scene);
+    const ompl::base::SpaceInformationPtr si = planning.setup->getSpaceInformation();
+    si->setStateValidityCheckingResolution(kResolution);
+    std::vector<std::shared_ptr<SceneValidityChecker>> validity(slots.size());
+    auto install = [&](std::size_t c) {
+        validity[c] = std::make_shared<SceneValidityChecker>(si, slots[c].scene, cfg.planar);
+        si->setStateValidityChecker(validity[c]);
+        if (slots[c].motion == MotionCheck::Continuous)
+            si->setMotionValidator(std::make_shared<SceneMotionValidator>(si, validity[c]));
+        else
+            si->setMotionValidator(std::make_shared<ompl::base::DiscreteMotionValidator>(si));
+    };
+    ompl::tools::Benchmark benchmark(*planning.setup, cfg.name);
+    std::map<const ompl::base::Planner *, std::size_t> slotOf;
+    std::string labels;
+    for (std::size_t c = 0; c < slots.size(); ++c)
+    {
+        install(c);
+        labels += (c ? "," : "") + slots[c].label;
+        for (const PlannerRequest &request : requests)
+        {
+            ompl::base::PlannerPtr planner = makePlanner(request, si);
+            planner->setName(planner->getName() + "[" + slots[c].label + "]");
+            slotOf[planner.get()] = c;
+            benchmark.addPlanner(planner);
+        }
+    }
+    benchmark.addExperimentParameter("configurations", "VARCHAR(512)", labels);
+    benchmark.addExperimentParameter("baseline", "VARCHAR(64)", "none");
+    benchmark.addExperimentParameter("robots", "INTEGER", std::to_string(cfg.robotCount()));
+    benchmark.addExperimentParameter("shard_index", "INTEGER", std::to_string(run.shardIndex));
+    benchmark.addExperimentParameter("shard_count", "INTEGER", std::to_string(run.shardCount));
+    benchmark.addExperimentParameter("total_runs", "INTEGER", std::to_string(run.totalRuns));
+    if (run.seeded)
+    {
+        benchmark.addExperimentParameter("base_seed", "INTEGER", std::to_string(run.baseSeed));
+        benchmark.addExperimentParameter("shard_seed", "INTEGER", std::to_string(run.seed));
+    }
+    const std::size_t totalThisShard = std::size_t(run.shardRuns) * slotOf.size();
+    std::size_t done = 0;
+    std::map<const ompl::base::Planner *, unsigned> runsSoFar;
+    benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) { install(slotOf.at(planner.get())); });
+    benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
+        const std::size_t c = slotOf.at(planner.get());
+        const unsigned local = runsSoFar[planner.get()]++;
+        props["collision checks INTEGER"] = std::to_string(validity[c]->checkCount());
+        props["checker VARCHAR(32)"] = slots[c].checker;
+        props["configuration VARCHAR(64)"] = slots[c].label;
+        props["run index INTEGER"] = std::to_string(run.shardIndex + std::size_t(local) * run.shardCount);
+        ++done;
+        std::cerr << "\r[" << done << "/" << totalThisShard << "] " << planner->getName() << " run " << local + 1 << "/"
+                  << run.shardRuns << "   " << std::flush;
+    });
+    ompl::tools::Benchmark::Request request(run.timeLimit, run.memoryLimit, run.shardRuns, 0.05, false, false, true);
+    benchmark.benchmark(request);
+    std::cerr << '\n';
+    AtomicFile log(run.out);
+    if (!benchmark.saveResultsToStream(log.stream()))
+        throw InputError(run.out, 0, "cannot write the benchmark log");
+    log.commit();
+    std::cout << "benchmark log written to: " << run.out << " (" << slotOf.size() << " planner/configuration pairs, "
+              << run.shardRuns << " runs each, " << cfg.robotCount() << " robots; configurations: " << labels << ")\n";
+    (void)cl;
+    return kSuccess;
 }
 }  // namespace
 
@@ -192,6 +288,8 @@ Examples:
   hybridcd bench problems/window_3d.cfg --checker obb,hybrid --motion continuous,discrete --runs 20
   hybridcd bench problems/window_3d.cfg --runs 100 --shard 0/4 --seed 7 --out window.shard0.log
   hybridcd bench problems/corridor_kcar.cfg --planner kpiece,rrt --runs 10 --time 20
+A scene problem (robot.K, obstacle.K) plans all its robots at once; it has no OMPL.app baseline, so
+compare checkers and motion checks with --checker and --motion continuous,discrete.
 Shard I of N (N > 1) seeds OMPL with SplitMix64(SEED * 2^32 + I) folded into 1..2^32-1, printed
 and written in the log; bench/merge_shards.py merges the shards' logs into one experiment.
 )");
@@ -211,7 +309,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     const ProblemConfig &cfg = problem.config;
     // A kinodynamic problem (control = ...) is benchmarked with OMPL's control planners.
     const bool kinodynamic = !cfg.control.empty();
-    std::vector<CheckerSlot> slots = configurationsOf(cl, checkers, kinodynamic);
+    std::vector<CheckerSlot> slots = configurationsOf(cl, checkers, kinodynamic, cfg.isScene());
     if (!kinodynamic && cl.has("goal-threshold"))
         throw UsageError("--goal-threshold is for kinodynamic problems (a .cfg with control = ...)");
     ControlSettings controlSettings;
@@ -241,6 +339,10 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     if (requests.empty())
         requests.push_back({kinodynamic ? "kpiece" : "rrtconnect", "", {}});
 
+    if (cfg.isScene())
+        return benchScene(cl, problem, slots, requests,
+                          SceneBenchRun{timeLimit, memoryLimit, shardRuns, shardIndex, shardCount, totalRuns, seeded,
+                                        baseSeed, seed, out});
     for (CheckerSlot &slot : slots)
         slot.instance = checkers.make(slot.checker, problem.scene, slot.options);
 

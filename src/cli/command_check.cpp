@@ -2,6 +2,7 @@
 // `hybridcd check`: one line per pose, 1 collision-free or 0 colliding; a summary on stderr.
 #include "command_line.h"
 #include "commands.h"
+#include "command_scene.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/path_file.h"
@@ -35,6 +36,8 @@ int runCheck(const CommandLine &cl, const CheckerCatalogue &checkers)
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
+    if (problem.config.isScene())
+        return runSceneCheck(problem, cl.text("states", ""), checkerName, options);
     const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
     const auto checker = checkers.make(checkerName, problem.scene, options);
 

@@ -2,6 +2,7 @@
 // `hybridcd check-motion` and `hybridcd clearance`: continuous motion checks and distances per line.
 #include "command_line.h"
 #include "commands.h"
+#include "command_scene.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/path_file.h"
@@ -48,6 +49,8 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
+    if (problem.config.isScene())
+        return runSceneCheckMotion(problem, cl.text("motions", ""), checkerName, options, cl.has("verdict-only"));
     const auto motions = readMotions(cl.text("motions", ""), problem.config.planar);
     PlanningProblem planning =
         makePlanningProblem(problem, checkers.make(checkerName, problem.scene, options), MotionCheck::Continuous);
@@ -114,6 +117,8 @@ int runClearance(const CommandLine &cl, const CheckerCatalogue &checkers)
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
+    if (problem.config.isScene())
+        return runSceneClearance(problem, cl.text("states", ""), checkerName, options);
     const auto poses = readPoses(cl.text("states", ""), problem.config.planar);
     const auto checker = checkers.make(checkerName, problem.scene, options);
     std::ostringstream out;

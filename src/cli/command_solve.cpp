@@ -2,6 +2,7 @@
 // `hybridcd solve`: plan, simplify, report, write the path in OMPL.app's .path format.
 #include "command_line.h"
 #include "commands.h"
+#include "command_scene.h"
 #include "problem_checks.h"
 #include "solve_progress.h"
 
@@ -205,6 +206,24 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::string outPath = cl.text("out", problem.config.name + ".solution.path");
     checkOutputPath(outPath, cl.has("out") ? "--out" : "the default output", inputFilesOf(problem));
     requireStartAndGoalInVolume(problem.config);
+    if (problem.config.isScene())
+    {
+        if (cl.has("sampler") && sampling != "uniform")
+            throw UsageError("option --sampler retraction is for problems of one robot; " + problem.config.name +
+                             " is a scene of " + std::to_string(problem.config.robotCount()) + " robots");
+        for (const char *option : {"goal-threshold", "propagation-step", "control-steps"})
+            if (cl.has(option))
+                throw UsageError(std::string("--") + option + " is for kinodynamic problems (a .cfg with control = ...)");
+        SceneSolveRun run;
+        run.timeLimit = timeLimit;
+        run.outPath = outPath;
+        run.plannerName = cl.text("planner", "rrtconnect");
+        run.params = params;
+        run.checkerName = checkerName;
+        run.checkerOptions = checkerOptions;
+        run.continuous = motion == MotionCheck::Continuous;
+        return runSceneSolve(problem, run);
+    }
 
     const auto buildStart = std::chrono::steady_clock::now();
     std::shared_ptr<const CollisionChecker> checker = checkers.make(checkerName, problem.scene, checkerOptions);

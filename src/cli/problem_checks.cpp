@@ -41,20 +41,32 @@ void requireStartAndGoalInVolume(const ProblemConfig &config)
 {
     const std::optional<std::pair<double, double>> volume[3] = {config.volumeX, config.volumeY, config.volumeZ};
     const char *axes[3] = {"x", "y", "z"};
-    for (const bool isStart : {true, false})
+    struct End
     {
-        const ConfigPose &pose = isStart ? config.start : config.goal;
+        const ConfigPose *pose;
+        int line;
+        std::string name;
+    };
+    std::vector<End> ends = {{&config.start, config.startLine, "start"}, {&config.goal, config.goalLine, "goal"}};
+    for (const RobotSpec &robot : config.extraRobots)
+    {
+        const std::string k = robot.label.substr(robot.label.find('.') + 1);
+        ends.push_back({&robot.start, robot.startLine, "start." + k});
+        ends.push_back({&robot.goal, robot.goalLine, "goal." + k});
+    }
+    for (const End &end : ends)
+    {
+        const ConfigPose &pose = *end.pose;
         const double position[3] = {pose.x, pose.y, pose.z};
-        const std::string which = isStart ? "start" : "goal";
         for (int i = 0; i < (config.planar ? 2 : 3); ++i)
             if (volume[i] && (position[i] < volume[i]->first || position[i] > volume[i]->second))
             {
                 std::ostringstream message;
-                message << "the " << which << " " << formatPose(pose, config.planar)
-                        << " lies outside the problem's volume: " << which << "." << axes[i] << " = " << position[i]
-                        << " is not in [volume.min." << axes[i] << ", volume.max." << axes[i] << "] = ["
-                        << volume[i]->first << ", " << volume[i]->second << "]";
-                throw InputError(config.path, isStart ? config.startLine : config.goalLine, message.str());
+                message << "the " << end.name << " " << formatPose(pose, config.planar)
+                        << " lies outside the problem's volume: " << end.name << "." << axes[i] << " = "
+                        << position[i] << " is not in [volume.min." << axes[i] << ", volume.max." << axes[i]
+                        << "] = [" << volume[i]->first << ", " << volume[i]->second << "]";
+                throw InputError(config.path, end.line, message.str());
             }
     }
 }

@@ -3,6 +3,7 @@
 
 #include "hybridcd/io/input_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -77,38 +78,54 @@ void normaliseQuaternion(PoseRecord &row, std::size_t first, const std::string &
 }
 }  // namespace
 
-std::vector<PoseRecord> readPoses(const std::string &path, bool planar)
+std::vector<PoseRecord> readPoses(const std::string &path, bool planar, std::size_t robots)
 {
-    return parsePoses(readText(path), path, planar);
+    return parsePoses(readText(path), path, planar, robots);
 }
 
-std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sourceName, bool planar)
+namespace
 {
-    std::vector<PoseRecord> rows = parseRows(text, sourceName, poseColumns(planar),
-                                             planar ? "a planar pose (x y theta)" : "a pose (x y z qx qy qz qw)");
+std::string poseWhat(bool planar, std::size_t robots, const char *single, const char *several)
+{
+    return robots == 1 ? std::string(single) : std::to_string(robots) + " " + several;
+}
+}  // namespace
+
+std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sourceName, bool planar,
+                                   std::size_t robots)
+{
+    robots = std::max<std::size_t>(robots, 1);
+    const std::size_t n = poseColumns(planar);
+    const std::string what =
+        planar ? poseWhat(planar, robots, "a planar pose (x y theta)", "planar poses (x y theta each, one per robot)")
+               : poseWhat(planar, robots, "a pose (x y z qx qy qz qw)",
+                          "poses (x y z qx qy qz qw each, one per robot)");
+    std::vector<PoseRecord> rows = parseRows(text, sourceName, robots * n, what.c_str());
     if (!planar)
         for (PoseRecord &row : rows)
-            normaliseQuaternion(row, 0, sourceName);
+            for (std::size_t r = 0; r < robots; ++r)
+                normaliseQuaternion(row, r * n, sourceName);
     return rows;
 }
 
-std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar)
+std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar, std::size_t robots)
 {
-    return parseMotions(readText(path), path, planar);
+    return parseMotions(readText(path), path, planar, robots);
 }
 
 std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view text, const std::string &sourceName,
-                                                            bool planar)
+                                                            bool planar, std::size_t robots)
 {
-    const std::size_t n = poseColumns(planar);
+    robots = std::max<std::size_t>(robots, 1);
+    const std::size_t n = poseColumns(planar) * robots;
+    const std::string what = robots == 1 ? std::string("a motion (two poses)")
+                                         : "a motion (two states of " + std::to_string(robots) + " poses each)";
     std::vector<std::pair<PoseRecord, PoseRecord>> motions;
-    for (PoseRecord &row : parseRows(text, sourceName, 2 * n, "a motion (two poses)"))
+    for (PoseRecord &row : parseRows(text, sourceName, 2 * n, what.c_str()))
     {
         if (!planar)
-        {
-            normaliseQuaternion(row, 0, sourceName);
-            normaliseQuaternion(row, n, sourceName);
-        }
+            for (std::size_t r = 0; r < 2 * robots; ++r)
+                normaliseQuaternion(row, r * poseColumns(planar), sourceName);
         PoseRecord a{{row.values.begin(), row.values.begin() + long(n)}, row.line};
         PoseRecord b{{row.values.begin() + long(n), row.values.begin() + long(2 * n)}, row.line};
         motions.emplace_back(std::move(a), std::move(b));

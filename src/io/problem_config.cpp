@@ -62,6 +62,8 @@ private:
     std::string path_;
 };
 
+bool isSceneKey(const std::string &key);
+
 // Every key OMPL.app's .cfg files use (all of its shipped problems), so that none of them warns.
 bool isKnownProblemKey(const std::string &key)
 {
@@ -75,7 +77,52 @@ bool isKnownProblemKey(const std::string &key)
                 k.insert(std::string("volume.") + bound + "." + axis);
         return k;
     }();
-    return known.count(key) > 0;
+    return known.count(key) > 0 || isSceneKey(key);
+}
+
+// Keys of scene problems: robot.K, start.K.*, goal.K.*, obstacle.K, obstacle.K.* (K a whole number)
+// and allowed_collisions. `index` gets K and `field` what follows it ("" for robot.K / obstacle.K).
+bool splitIndexedKey(const std::string &key, const std::string &head, int &index, std::string &field)
+{
+    if (key.compare(0, head.size() + 1, head + ".") != 0)
+        return false;
+    std::size_t i = head.size() + 1, digits = 0;
+    while (i + digits < key.size() && std::isdigit(static_cast<unsigned char>(key[i + digits])))
+        ++digits;
+    if (digits == 0 || digits > 6)
+        return false;
+    index = std::stoi(key.substr(i, digits));
+    const std::size_t rest = i + digits;
+    if (rest == key.size())
+    {
+        field.clear();
+        return true;
+    }
+    if (key[rest] != '.')
+        return false;
+    field = key.substr(rest + 1);
+    return !field.empty();
+}
+
+bool isPoseField(const std::string &field)
+{
+    static const std::set<std::string> fields = {"x", "y", "z", "theta", "axis.x", "axis.y", "axis.z"};
+    return fields.count(field) > 0;
+}
+
+bool isSceneKey(const std::string &key)
+{
+    if (key == "allowed_collisions")
+        return true;
+    int index = 0;
+    std::string field;
+    if (splitIndexedKey(key, "robot", index, field))
+        return field.empty() && index >= 2;
+    if (splitIndexedKey(key, "start", index, field) || splitIndexedKey(key, "goal", index, field))
+        return index >= 2 && isPoseField(field);
+    if (splitIndexedKey(key, "obstacle", index, field))
+        return field.empty() || isPoseField(field);
+    return false;
 }
 
 // [benchmark] keys: the limits hybridcd reads and OMPL.app's front-end options it does not need.
@@ -283,6 +330,168 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
     };
     readPose("start", cfg.start);
     readPose("goal", cfg.goal);
+
+    // Scene problems: more robots, obstacles, allowed pairs (README, "Scenes of many bodies").
+    auto shapeOf = [&](const std::string &key, const Entry &e) {
+        ShapeSpec spec;
+        spec.line = e.line;
+        std::istringstream words(e.value);
+        std::string first;
+        words >> first;
+        first = lower(first);
+        static const std::map<std::string, std::size_t> parameterCount = {
+            {"sphere", 1}, {"box", 3},       {"capsule", 2},  {"cylinder", 2},
+            {"cone", 2},   {"ellipsoid", 3}, {"halfspace", 4}};
+        if (first == "mesh" || first == "convex")
+        {
+            std::string file;
+            std::getline(words, file);
+            file = trim(file);
+            if (file.empty())
+                throw InputError(path, e.line, "'" + key + " = " + first + "' needs a mesh file after it");
+            spec.kind = first;
+            spec.file = resolve(file);
+            return spec;
+        }
+        const auto count = parameterCount.find(first);
+        if (count == parameterCount.end())
+        {
+            // A plain file name, as OMPL.app's `robot = FILE`.
+            spec.kind = "mesh";
+            spec.file = resolve(e.value);
+            return spec;
+        }
+        spec.kind = first;
+        std::string word;
+        while (words >> word)
+            spec.parameters.push_back(parser.number(key, Entry{word, e.line}));
+        if (spec.parameters.size() != count->second)
+            throw InputError(path, e.line,
+                             "'" + key + " = " + first + "' takes " + std::to_string(count->second) + " number" +
+                                 (count->second == 1 ? "" : "s") + ", got " + std::to_string(spec.parameters.size()));
+        if (first == "halfspace")
+        {
+            if (spec.parameters[0] == 0.0 && spec.parameters[1] == 0.0 && spec.parameters[2] == 0.0)
+                throw InputError(path, e.line, "'" + key + " = halfspace' needs a non-zero normal");
+        }
+        else
+            for (double v : spec.parameters)
+                if (!(v > 0.0))
+                    throw InputError(path, e.line,
+                                     "'" + key + " = " + first + "' needs positive dimensions, got '" + e.value + "'");
+        return spec;
+    };
+    std::map<int, const Entry *> robotEntries, obstacleEntries;
+    for (const auto &[key, e] : problem)
+    {
+        int index = 0;
+        std::string field;
+        if (splitIndexedKey(key, "robot", index, field) && field.empty() && index >= 2)
+            robotEntries[index] = &e;
+        else if (splitIndexedKey(key, "obstacle", index, field) && field.empty())
+            obstacleEntries[index] = &e;
+    }
+    for (const auto &[key, e] : problem)
+    {
+        int index = 0;
+        std::string field;
+        const bool poseOfRobot =
+            (splitIndexedKey(key, "start", index, field) || splitIndexedKey(key, "goal", index, field)) && index >= 2 &&
+            isPoseField(field);
+        if (poseOfRobot && !robotEntries.count(index))
+            throw InputError(path, e.line,
+                             "'" + key + "' is given, but no 'robot." + std::to_string(index) + " = ...' line");
+        if (splitIndexedKey(key, "obstacle", index, field) && isPoseField(field) && !obstacleEntries.count(index))
+            throw InputError(path, e.line,
+                             "'" + key + "' is given, but no 'obstacle." + std::to_string(index) + " = ...' line");
+    }
+    // A pose under `prefix` (start.2, obstacle.3): required keys as for the first robot's start.
+    auto readPoseAt = [&](const std::string &prefix, ConfigPose &pose, bool required, int fallbackLine) {
+        auto field = [&](const std::string &name, double fallback, bool needed) {
+            const Entry *e = get(prefix + "." + name);
+            if (!e && needed)
+                throw InputError(path, fallbackLine,
+                                 "[problem] section lacks the required key '" + prefix + "." + name + "'");
+            return e ? parser.number(prefix + "." + name, *e) : fallback;
+        };
+        const Entry *first = get(prefix + ".x");
+        pose.x = field("x", 0.0, required);
+        pose.y = field("y", 0.0, required);
+        pose.theta = field("theta", 0.0, false);
+        if (cfg.planar)
+        {
+            if (const Entry *z = get(prefix + ".z"))
+                throw InputError(path, z->line, "'" + prefix + ".z' in a planar problem (the first start has no z)");
+        }
+        else
+        {
+            pose.z = field("z", 0.0, required);
+            pose.axisX = field("axis.x", 1.0, false);
+            pose.axisY = field("axis.y", 0.0, false);
+            pose.axisZ = field("axis.z", 0.0, false);
+            if (pose.theta != 0.0 && pose.axisX == 0.0 && pose.axisY == 0.0 && pose.axisZ == 0.0)
+                throw InputError(path, fallbackLine,
+                                 prefix + ".axis is zero; a rotation of " + prefix + ".theta needs a non-zero axis");
+        }
+        return first ? first->line : fallbackLine;
+    };
+    for (const auto &[index, e] : robotEntries)
+    {
+        RobotSpec robot;
+        robot.label = "robot." + std::to_string(index);
+        robot.shape = shapeOf(robot.label, *e);
+        if (robot.shape.kind == "halfspace")
+            throw InputError(path, e->line, "'" + robot.label + "' cannot be a halfspace (it has no extent to move)");
+        robot.startLine = readPoseAt("start." + std::to_string(index), robot.start, true, e->line);
+        robot.goalLine = readPoseAt("goal." + std::to_string(index), robot.goal, true, e->line);
+        cfg.extraRobots.push_back(std::move(robot));
+    }
+    for (const auto &[index, e] : obstacleEntries)
+    {
+        ObstacleSpec obstacle;
+        obstacle.label = "obstacle." + std::to_string(index);
+        obstacle.shape = shapeOf(obstacle.label, *e);
+        readPoseAt(obstacle.label, obstacle.pose, false, e->line);
+        cfg.obstacles.push_back(std::move(obstacle));
+    }
+    if (const Entry *allowed = get("allowed_collisions"))
+    {
+        cfg.allowedCollisionsLine = allowed->line;
+        std::set<std::string> labels = {"robot", "robot.1"};
+        if (!cfg.worldMesh.empty())
+            labels.insert("world");
+        for (const RobotSpec &r : cfg.extraRobots)
+            labels.insert(r.label);
+        for (const ObstacleSpec &o : cfg.obstacles)
+            labels.insert(o.label);
+        std::string list = allowed->value;
+        std::replace(list.begin(), list.end(), ',', ';');
+        std::istringstream pairs(list);
+        std::string pair;
+        while (std::getline(pairs, pair, ';'))
+        {
+            if (trim(pair).empty())
+                continue;
+            std::istringstream names(pair);
+            std::string a, b, extra;
+            names >> a >> b >> extra;
+            if (b.empty() || !extra.empty())
+                throw InputError(path, allowed->line,
+                                 "allowed_collisions takes pairs of body names separated by ';', got '" + trim(pair) +
+                                     "'");
+            for (const std::string &name : {a, b})
+                if (!labels.count(name))
+                    throw InputError(path, allowed->line,
+                                     "allowed_collisions names '" + name +
+                                         "', which is no body of this problem (robot, robot.K, world, obstacle.K)");
+            cfg.allowedCollisions.emplace_back(a == "robot.1" ? "robot" : a, b == "robot.1" ? "robot" : b);
+        }
+    }
+
+    if (cfg.isScene() && !cfg.control.empty())
+        throw InputError(path, cfg.controlLine,
+                         "control = " + cfg.control +
+                             " plans one vehicle; a scene problem (robot.K or obstacle.K) is planned geometrically");
 
     auto readRange = [&](const std::string &axis) -> std::optional<std::pair<double, double>> {
         const Entry *lo = get("volume.min." + axis), *hi = get("volume.max." + axis);

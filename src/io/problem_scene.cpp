@@ -28,6 +28,23 @@ LoadedProblem loadProblem(const std::string &cfgPath, const MeshLimits &limits)
             throw InputError(cfgPath, p.config.worldLine, std::string("world mesh: ") + e.what());
         }
     }
+    auto loadShapeMesh = [&](const ShapeSpec &shape, MeshRole role, const std::string &label) {
+        if (shape.file.empty())
+            return LoadedMesh{};
+        try
+        {
+            return loadMesh(shape.file, role, limits);
+        }
+        catch (const InputError &e)
+        {
+            throw InputError(cfgPath, shape.line, label + " mesh: " + e.what());
+        }
+    };
+    const MeshRole robotRole = p.config.planar ? MeshRole::RobotPlanar : MeshRole::Robot3D;
+    for (const RobotSpec &robot : p.config.extraRobots)
+        p.extraRobotMeshes.push_back(loadShapeMesh(robot.shape, robotRole, robot.label));
+    for (const ObstacleSpec &obstacle : p.config.obstacles)
+        p.obstacleMeshes.push_back(loadShapeMesh(obstacle.shape, MeshRole::Environment, obstacle.label));
     p.scene.robot = p.robot.mesh;
     p.scene.environment = p.world.mesh;
     p.scene.robotName = p.config.robotMesh;

@@ -4,6 +4,8 @@
 
 #include "hybridcd/io/path_file.h"
 #include "hybridcd/query/checker_catalogue.h"
+#include "hybridcd/scene/problem_bodies.h"
+#include "hybridcd/scene/scene_motion.h"
 #ifdef HYBRIDCD_HAVE_FCL
 #include "hybridcd/fcl/fcl_checker.h"
 #endif
@@ -457,4 +459,111 @@ TEST(Cli, UnknownOptionsAndStrayArgumentsExitOne)
         EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
         EXPECT_NE(r.output.find("--help"), std::string::npos) << c.args << "\n" << r.output;
     }
+}
+
+// Scene problems: several robots and primitive obstacles (README, "Scenes of many bodies").
+TEST(Cli, SolvesASceneOfThreeRobotsAndThePathHoldsUnderBruteForce)
+{
+    const std::string cfg = test::sourcePath("problems/crossing_2d.cfg");
+    const std::string out = test::writeTempFile("crossing.path", "");
+    const CliRun r = run("solve " + cfg + " --seed 1 --time 60 --out " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char *field : {"(3 robots, SE2 each)", "solved: yes", "path written to:"})
+        EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
+    const LoadedProblem problem = loadProblem(cfg);
+    const auto records = readPoses(out, true, 3);
+    ASSERT_GE(records.size(), 2u);
+    SceneOptions reference;
+    reference.bruteForce = true;
+    const auto scene = makeProblemScene(problem, reference);
+    auto posesOf = [](const PoseRecord &record) {
+        std::vector<RigidTransform> poses;
+        for (std::size_t k = 0; k < 3; ++k)
+            poses.push_back(transformOfRow(record.values.data() + 3 * k, true));
+        return poses;
+    };
+    QueryContext context;
+    // Every state free, and every motion between written states free at fine steps (brute force)
+    // and under the continuous check of the brute-force scene.
+    for (std::size_t i = 0; i + 1 < records.size(); ++i)
+    {
+        const auto from = posesOf(records[i]), to = posesOf(records[i + 1]);
+        ASSERT_FALSE(scene->collides(from, context)) << "state " << i;
+        ASSERT_TRUE(checkSceneMotionBySampling(*scene, from, to, 50, context).valid) << "motion " << i;
+        ASSERT_TRUE(checkSceneMotion(*scene, from, to, context).valid) << "motion " << i;
+    }
+    const std::vector<double> &first = records.front().values, &last = records.back().values;
+    const std::vector<RigidTransform> start = problemStart(problem.config), goal = problemGoal(problem.config);
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+        EXPECT_NEAR(first[3 * k], start[k].translation.x(), 1e-9);
+        EXPECT_NEAR(last[3 * k + 1], goal[k].translation.y(), 1e-9);
+    }
+    // The same file through `check` with the brute-force reference: one 1 per state.
+    const CliRun check = run("check " + cfg + " --states " + out + " --checker bruteforce 2>/dev/null");
+    ASSERT_EQ(check.status, 0) << check.output;
+    std::string ones;
+    for (std::size_t i = 0; i < records.size(); ++i)
+        ones += "1\n";
+    EXPECT_EQ(check.output, ones);
+}
+
+TEST(Cli, SceneCommandsTakeEveryRobotsPosePerLine)
+{
+    const std::string cfg = test::sourcePath("problems/crossing_2d.cfg");
+    // The start; robot 2 inside the middle wall box; robot 3 overlapping robot 1.
+    const std::string states = test::writeTempFile(
+        "scene_states.txt", "-15 -8 0 -15 8 0 15 0 0\n-15 -8 0 0 0 0 15 0 0\n-15 -8 0 -15 8 0 -15 -8 0\n");
+    const CliRun check = run("check " + cfg + " --states " + states);
+    ASSERT_EQ(check.status, 0) << check.output;
+    EXPECT_EQ(check.output.substr(0, 6), "1\n0\n0\n") << check.output;
+    EXPECT_NE(check.output.find("3 robots, "), std::string::npos) << check.output;
+    const CliRun clearance = run("clearance " + cfg + " --states " + states + " 2>/dev/null");
+    ASSERT_EQ(clearance.status, 0) << clearance.output;
+    std::istringstream values(clearance.output);
+    double d0 = -1, d1 = -1, d2 = -1;
+    values >> d0 >> d1 >> d2;
+    EXPECT_GT(d0, 0.5);
+    EXPECT_EQ(d1, 0.0);
+    EXPECT_EQ(d2, 0.0);
+    // Robot 3 drives straight through the middle wall (it must not pass), robot 3 moves in the open.
+    const std::string motions = test::writeTempFile(
+        "scene_motions.txt", "-15 -8 0 -15 8 0 15 0 0 -15 -8 0 -15 8 0 -15 0 0\n"
+                             "-15 -8 0 -15 8 0 15 0 0 -15 -8 0 -15 8 0 12 0 0\n");
+    const CliRun motion = run("check-motion " + cfg + " --motions " + motions + " 2>/dev/null");
+    ASSERT_EQ(motion.status, 0) << motion.output;
+    std::istringstream lines(motion.output);
+    int first = -1, second = -1;
+    double t = -1.0;
+    lines >> first >> t >> second;
+    EXPECT_EQ(first, 0);
+    // The disc (radius 1) meets the wall face x = 1 when its centre reaches x = 2: after 13 of 30.
+    EXPECT_LE(t, 13.0 / 30.0);
+    EXPECT_GE(t, 13.0 / 30.0 - 1e-6);
+    EXPECT_EQ(second, 1);
+    // A line with the poses of too few robots names the file and line.
+    const std::string shortLine = test::writeTempFile("scene_short.txt", "-15 -8 0 -15 8 0 15 0 0\n1 2 3 4 5 6\n");
+    const CliRun bad = run("check " + cfg + " --states " + shortLine);
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_NE(bad.output.find(shortLine + ":2:"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("3 planar poses"), std::string::npos) << bad.output;
+}
+
+TEST(Cli, BenchRunsASceneProblemPerConfiguration)
+{
+    const std::string cfg = test::sourcePath("problems/crossing_2d.cfg");
+    const std::string log = test::writeTempFile("crossing_bench.log", "");
+    const CliRun r = run("bench " + cfg + " --planner rrtconnect --runs 2 --time 20 --seed 3 --motion continuous,discrete"
+                         " --out " + log + " 2>/dev/null");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("3 robots; configurations: auto+continuous,auto+discrete(0.01)"), std::string::npos)
+        << r.output;
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("RRTConnect[auto+continuous]"), std::string::npos);
+    EXPECT_NE(text.find("RRTConnect[auto+discrete(0.01)]"), std::string::npos);
+    // OMPL.app has no set-up for several robots to compare with.
+    const CliRun baseline = run("bench " + cfg + " --baseline omplapp --runs 1 --out " + log);
+    EXPECT_EQ(baseline.status, 1) << baseline.output;
+    EXPECT_NE(baseline.output.find("scene problem"), std::string::npos) << baseline.output;
 }

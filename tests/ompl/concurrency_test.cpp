@@ -7,6 +7,8 @@
 
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/ompl/scene_planning.h"
+#include "hybridcd/scene/problem_bodies.h"
 #include "hybridcd/query/checker_catalogue.h"
 #ifdef HYBRIDCD_HAVE_FCL
 #include "hybridcd/fcl/fcl_checker.h"
@@ -130,4 +132,63 @@ TEST(Concurrency, EveryCheckerAnswersEveryQueryFromEightThreadsAsSerially)
         SCOPED_TRACE(name);
         storm(catalogue, name);
     }
+}
+
+// A scene problem through its OMPL adapters: the validity checker, clearance and the continuous
+// motion validator of all robots at once, shared by 8 threads (contexts from the checker's pool,
+// the broad phase kept in each).
+TEST(Concurrency, SceneAdaptersAnswerFromEightThreadsAsSerially)
+{
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/crossing_2d.cfg"));
+    ScenePlanningProblem planning = makeScenePlanningProblem(problem, makeProblemScene(problem));
+    const ob::SpaceInformationPtr si = planning.setup->getSpaceInformation();
+    si->setup();
+    const int count = test::cases(160);
+    std::vector<ob::ScopedState<>> states;
+    auto sampler = si->allocStateSampler();
+    for (int i = 0; i < count + 1; ++i)
+    {
+        states.emplace_back(si->getStateSpace());
+        sampler->sampleUniform(states.back().get());
+    }
+    auto answer = [&](int i) {
+        Answers a;
+        a.valid = planning.validity->isValid(states[std::size_t(i)].get());
+        a.clearance = planning.validity->clearance(states[std::size_t(i)].get());
+        ob::ScopedState<> last(si->getStateSpace());
+        std::pair<ob::State *, double> lastValid{last.get(), -1.0};
+        a.motionFree = planning.motion->checkMotion(states[std::size_t(i)].get(), states[std::size_t(i) + 1].get(),
+                                                    lastValid);
+        a.lastValid = a.motionFree ? 1.0 : lastValid.second;
+        return a;
+    };
+    std::vector<Answers> serial;
+    int valid = 0;
+    for (int i = 0; i < count; ++i)
+    {
+        serial.push_back(answer(i));
+        valid += serial.back().valid ? 1 : 0;
+    }
+    EXPECT_GT(valid, 0);
+    EXPECT_LT(valid, count);
+    std::vector<std::vector<Answers>> parallel(8);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 8; ++t)
+        threads.emplace_back([&, t] {
+            for (int k = 0; k < count; ++k)
+                parallel[std::size_t(t)].push_back(answer((k + 17 * t) % count));
+        });
+    for (std::thread &thread : threads)
+        thread.join();
+    for (int t = 0; t < 8; ++t)
+        for (int k = 0; k < count; ++k)
+        {
+            // Verdicts exactly; distances and times up to rounding (GJK's warm start in a context
+            // depends on what that context answered before).
+            const Answers &p = parallel[std::size_t(t)][std::size_t(k)], &s = serial[std::size_t((k + 17 * t) % count)];
+            ASSERT_EQ(p.valid, s.valid) << "thread " << t << ", state " << (k + 17 * t) % count;
+            ASSERT_EQ(p.motionFree, s.motionFree) << "thread " << t << ", state " << (k + 17 * t) % count;
+            ASSERT_NEAR(p.clearance, s.clearance, 1e-9 * (1.0 + std::abs(s.clearance)));
+            ASSERT_NEAR(p.lastValid, s.lastValid, 1e-6);
+        }
 }

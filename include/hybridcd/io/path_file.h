@@ -23,17 +23,22 @@ struct PoseRecord
 /// Throws InputError("FILE:LINE: ...") on a short line, a malformed or non-finite number, or a
 /// quaternion whose norm is 0 or differs from 1 by more than kQuaternionNormTolerance; accepted
 /// quaternions are normalised (normaliseRowQuaternion). A folder or a file that cannot be opened is an InputError too.
-std::vector<PoseRecord> readPoses(const std::string &path, bool planar);
+/// With `robots` > 1 (a scene problem), each line holds that many poses one after the other, and
+/// each record all of them.
+std::vector<PoseRecord> readPoses(const std::string &path, bool planar, std::size_t robots = 1);
 
 /// Parses pose lines held in memory, as readPoses does a file; errors name `sourceName`.
-std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sourceName, bool planar);
+std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sourceName, bool planar,
+                                   std::size_t robots = 1);
 
 /// Reads motions: two poses per line (14 numbers in 3D, 6 in the plane). Throws as readPoses does.
-std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar);
+/// With `robots` > 1, each state of a motion holds that many poses.
+std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &path, bool planar,
+                                                           std::size_t robots = 1);
 
 /// Parses motion lines held in memory, as readMotions does a file; errors name `sourceName`.
 std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view text, const std::string &sourceName,
-                                                            bool planar);
+                                                            bool planar, std::size_t robots = 1);
 
 /// Writes one pose per line with full round-trip precision.
 void writePoses(std::ostream &out, const std::vector<std::vector<double>> &poses);

@@ -20,6 +20,38 @@ struct ConfigPose
     double axisX = 1.0, axisY = 0.0, axisZ = 0.0;
 };
 
+/// The geometry of a scene body as a .cfg names it (README, "Scenes of many bodies"): a mesh file,
+/// the convex hull of a mesh file's vertices, or a primitive with its dimensions in the problem's
+/// length units, centred at the body's origin with its axis along the body's z.
+struct ShapeSpec
+{
+    /// "mesh", "convex", "sphere", "box", "capsule", "cylinder", "cone", "ellipsoid" or "halfspace".
+    std::string kind;
+    /// sphere: radius; box: side lengths x y z; capsule, cylinder: radius and length of the axis
+    /// (a capsule's length without its caps); cone: base radius and height; ellipsoid: semi-axes
+    /// x y z; halfspace: normal x y z and offset d (the solid n . p <= d). Empty for files.
+    std::vector<double> parameters;
+    std::string file;  ///< mesh and convex: the mesh file, resolved relative to the .cfg's folder
+    int line = 0;      ///< the .cfg line that names it
+};
+
+/// Robot 2, 3, ... of a scene problem (`robot.K`, `start.K.*`, `goal.K.*`).
+struct RobotSpec
+{
+    std::string label;  ///< "robot.K"
+    ShapeSpec shape;
+    ConfigPose start, goal;
+    int startLine = 0, goalLine = 0;
+};
+
+/// A static obstacle of a scene problem (`obstacle.K` and its pose `obstacle.K.x` ...).
+struct ObstacleSpec
+{
+    std::string label;  ///< "obstacle.K"
+    ShapeSpec shape;
+    ConfigPose pose;  ///< world-from-obstacle, as a start is written (identity when not given)
+};
+
 struct BenchmarkSettings
 {
     double timeLimit = 10.0;      ///< seconds per run
@@ -48,6 +80,19 @@ struct ProblemConfig
     std::optional<double> objectiveThreshold;
     std::string sampler;  ///< valid-state sampler: uniform, gaussian, obstacle_based, max_clearance, bridge_test
     BenchmarkSettings benchmark;
+    /// Scene problems: robots after the first, in order of K, and static obstacles besides the world
+    /// mesh. Both empty for OMPL.app's problems of one robot and one environment.
+    std::vector<RobotSpec> extraRobots;
+    std::vector<ObstacleSpec> obstacles;
+    /// Body pairs never checked against each other (`allowed_collisions = robot.2 obstacle.1; ...`),
+    /// by label: "robot" (or "robot.1"), "robot.K", "world", "obstacle.K".
+    std::vector<std::pair<std::string, std::string>> allowedCollisions;
+    int allowedCollisionsLine = 0;
+    /// True for a problem with several robots or with obstacles of its own: it is checked and planned
+    /// as a scene of many bodies.
+    bool isScene() const { return !extraRobots.empty() || !obstacles.empty(); }
+    /// Number of robots (1 + extraRobots).
+    std::size_t robotCount() const { return 1 + extraRobots.size(); }
     std::vector<PlannerRequest> planners;  ///< in file order
     /// "FILE:LINE: ..." notes on keys that were ignored (unknown to OMPL.app and hybridcd); the
     /// caller decides how to show them.

@@ -15,6 +15,11 @@ struct LoadedProblem
     LoadedMesh robot;
     LoadedMesh world;  ///< empty mesh when the problem names no world
     CollisionScene scene;
+    /// Scene problems: the mesh of each extra robot and obstacle whose shape is a mesh or convex
+    /// file, in the order of config.extraRobots and config.obstacles (an empty LoadedMesh for a
+    /// primitive).
+    std::vector<LoadedMesh> extraRobotMeshes;
+    std::vector<LoadedMesh> obstacleMeshes;
 };
 
 /// Reads the .cfg and its meshes. Mesh errors are reported against the .cfg line that names the

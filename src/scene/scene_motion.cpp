@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "hybridcd/scene/scene_motion.h"
+
+#include "hybridcd/narrowphase/time_of_contact.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace hcd
+{
+namespace
+{
+// The angle of the rotation that takes `from` to `to` (radians, in [0, pi]).
+double rotationAngle(const Mat3 &from, const Mat3 &to)
+{
+    const Eigen::Quaterniond a(from), b(to);
+    const double dot = std::min(1.0, std::abs(a.normalized().dot(b.normalized())));
+    return 2.0 * std::acos(dot);
+}
+
+// Per robot: how far it translates and turns over the whole motion.
+struct RobotSweep
+{
+    double translation = 0.0;  // |dx|, world units
+    double angle = 0.0;        // radians
+    bool rotates = false;
+};
+
+// Upper bound on how far any point of `body` moves per unit t.
+double bodySpeed(const Scene &scene, std::size_t body, const std::vector<RobotSweep> &sweeps)
+{
+    const SceneBody &b = scene.bodies()[body];
+    if (b.robot < 0)
+        return 0.0;
+    const RobotSweep &sweep = sweeps[std::size_t(b.robot)];
+    const double reach = b.ownerFromBody.translation.norm() + b.geometry->boundingRadius();
+    // A relative 1e-12 for the rounding of the interpolated poses themselves.
+    return (sweep.translation + sweep.angle * reach) * (1.0 + 1e-12) + 1e-15 * scene.scale();
+}
+
+bool validPoses(const std::vector<RigidTransform> &poses, std::size_t count)
+{
+    if (poses.size() != count)
+        return false;
+    for (const RigidTransform &p : poses)
+        if (!p.isFinite())
+            return false;
+    return true;
+}
+
+// The pair's first contact when neither body turns and both are polytopes: the time-augmented LP.
+// Returns false when it does not apply.
+bool translationContact(const Scene &scene, std::size_t pair, const std::vector<RigidTransform> &start,
+                        const std::vector<RigidTransform> &goal, const std::vector<RobotSweep> &sweeps, double &time)
+{
+    const ScenePair &p = scene.pairs()[pair];
+    const ConvexPiece *a = scene.polytope(p.first), *b = scene.polytope(p.second);
+    if (!a || !b)
+        return false;
+    auto turns = [&](std::uint32_t body) {
+        const int robot = scene.bodies()[body].robot;
+        return robot >= 0 && sweeps[std::size_t(robot)].rotates;
+    };
+    if (turns(p.first) || turns(p.second))
+        return false;
+    auto displacement = [&](std::uint32_t body) -> Vec3 {
+        const int robot = scene.bodies()[body].robot;
+        return robot < 0 ? Vec3::Zero()
+                         : Vec3(goal[std::size_t(robot)].translation - start[std::size_t(robot)].translation);
+    };
+    const ConvexPiece moving = a->transformed(scene.worldFromBody(p.first, start.data()));
+    const ConvexPiece fixed = b->transformed(scene.worldFromBody(p.second, start.data()));
+    const TimeOfContact contact =
+        translationalTimeOfContact(moving, displacement(p.first) - displacement(p.second), fixed);
+    time = contact.contact ? contact.time : 2.0;
+    return true;
+}
+}  // namespace
+
+void interpolateScenePoses(const std::vector<RigidTransform> &start, const std::vector<RigidTransform> &goal,
+                           double t, std::vector<RigidTransform> &out)
+{
+    out.resize(start.size());
+    for (std::size_t r = 0; r < start.size(); ++r)
+    {
+        const Eigen::Quaterniond a(start[r].rotation), b(goal[r].rotation);
+        // Eigen's slerp takes the shorter arc, as OMPL's SO(3) (and, for rotations about z, SO(2)).
+        out[r].rotation = a.normalized().slerp(t, b.normalized()).toRotationMatrix();
+        out[r].translation = start[r].translation + t * (goal[r].translation - start[r].translation);
+        if (t == 0.0)
+            out[r] = start[r];
+        else if (t == 1.0)
+            out[r] = goal[r];
+    }
+}
+
+SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTransform> &start,
+                                   const std::vector<RigidTransform> &goal, QueryContext &context,
+                                   const SceneMotionOptions &options)
+{
+    SceneMotionResult result;
+    const std::size_t robots = scene.robotCount();
+    if (!validPoses(start, robots) || !validPoses(goal, robots))
+    {
+        result.valid = false;
+        result.lastValidTime = result.contactTime = 0.0;
+        return result;
+    }
+    const double tolerance = options.contactTolerance > 0.0 ? options.contactTolerance : 1e-9 * scene.scale();
+    std::vector<RobotSweep> sweeps(robots);
+    for (std::size_t r = 0; r < robots; ++r)
+    {
+        sweeps[r].translation = (goal[r].translation - start[r].translation).norm();
+        sweeps[r].rotates = !(start[r].rotation == goal[r].rotation);
+        sweeps[r].angle = sweeps[r].rotates ? rotationAngle(start[r].rotation, goal[r].rotation) : 0.0;
+    }
+
+    // The earliest contact found so far: later pairs need only be advanced up to it.
+    double horizon = 1.0;
+    bool found = false;
+    std::vector<RigidTransform> poses;
+    for (std::size_t pair = 0; pair < scene.pairs().size(); ++pair)
+    {
+        const ScenePair &p = scene.pairs()[pair];
+        double lpTime = 0.0;
+        if (options.translationLp && translationContact(scene, pair, start, goal, sweeps, lpTime))
+        {
+            ++result.lpPairs;
+            if (lpTime <= 1.0 && (!found || lpTime < horizon))
+            {
+                found = true;
+                horizon = lpTime;
+                result.pair = pair;
+                result.contactTime = lpTime;
+                // The bodies touch at lpTime: the last valid time is just before, once checked.
+                result.lastValidTime = std::max(0.0, lpTime - 1e-9);
+                interpolateScenePoses(start, goal, result.lastValidTime, poses);
+                if (scene.pairCollides(pair, poses.data(), context))
+                    result.lastValidTime = 0.0;
+            }
+            continue;
+        }
+        const double speed = bodySpeed(scene, p.first, sweeps) + bodySpeed(scene, p.second, sweeps);
+        double t = 0.0;
+        for (std::size_t step = 0;; ++step)
+        {
+            if (found && t >= horizon)
+                break;  // another pair already touches earlier
+            interpolateScenePoses(start, goal, t, poses);
+            const double remaining = (1.0 - t) * speed;
+            // The boxes' gap first: when it alone covers a good part of what is left, step on it.
+            const double gap = scene.pairBoundsGap(pair, poses.data()) - tolerance;
+            if (gap > 0.0 && (gap >= remaining || gap >= 0.25 * remaining))
+            {
+                ++result.boundSteps;
+                if (gap >= remaining)
+                    break;
+                t += gap / speed;
+                continue;
+            }
+            ++result.distanceQueries;
+            const double clearance = scene.pairDistance(pair, poses.data(), context) - tolerance;
+            if (clearance <= 0.0 || step >= options.maxStepsPerPair)
+            {
+                if (!found || t < horizon)
+                {
+                    found = true;
+                    horizon = t;
+                    result.pair = pair;
+                    result.contactTime = t;
+                    // Every step kept the pair at least `tolerance` apart up to and including t
+                    // (it moved by at most the clearance it had), so t itself is still free, unless
+                    // the pair already touched at the start.
+                    result.lastValidTime = t;
+                }
+                break;
+            }
+            if (clearance >= remaining)
+                break;
+            t += clearance / speed;
+        }
+    }
+    result.valid = !found;
+    if (result.valid)
+        result.lastValidTime = result.contactTime = 1.0;
+    return result;
+}
+
+SceneMotionResult checkSceneMotionBySampling(const Scene &scene, const std::vector<RigidTransform> &start,
+                                             const std::vector<RigidTransform> &goal, std::size_t samples,
+                                             QueryContext &context)
+{
+    SceneMotionResult result;
+    samples = std::max<std::size_t>(samples, 1);
+    std::vector<RigidTransform> poses;
+    double lastValid = 0.0;
+    for (std::size_t i = 0; i <= samples; ++i)
+    {
+        const double t = double(i) / double(samples);
+        interpolateScenePoses(start, goal, t, poses);
+        if (scene.collides(poses, context))
+        {
+            result.valid = false;
+            result.contactTime = t;
+            result.lastValidTime = lastValid;
+            return result;
+        }
+        lastValid = t;
+    }
+    return result;
+}
+}  // namespace hcd
