@@ -263,6 +263,67 @@ void SweepAndPrune::update(BodyHandle handle, const BroadPhaseBox &box)
     }
 }
 
+// One insertion-sort pass over a whole list with the events of sortDown, then every endpoint's
+// position written again.
+void SweepAndPrune::sortWholeAxis(int axis)
+{
+    std::vector<Endpoint> &list = axes_[std::size_t(axis)];
+    const std::uint32_t n = std::uint32_t(list.size());
+    for (std::uint32_t i = 1; i < n; ++i)
+    {
+        if (!below(list[i], list[i - 1]))
+            continue;
+        const Endpoint e = list[i];
+        const std::uint32_t body = e.tag >> 1;
+        const bool upper = (e.tag & 1u) != 0;
+        std::uint32_t at = i;
+        while (at > 0 && below(e, list[at - 1]))
+        {
+            const Endpoint &p = list[at - 1];
+            if ((p.tag ^ e.tag) & 1u)
+            {
+                if (upper)
+                    pairs_.erase(BodyPairSet::key(body, p.tag >> 1));
+                else
+                    pairStarts(body, p.tag >> 1);
+            }
+            list[at] = p;
+            --at;
+            ++swaps_;
+        }
+        list[at] = e;
+    }
+    for (std::uint32_t i = 0; i < n; ++i)
+        bodies_[list[i].tag >> 1].position[std::size_t(axis)][list[i].tag & 1u] = i;
+}
+
+void SweepAndPrune::updateMany(const BodyHandle *handles, const BroadPhaseBox *boxes, std::size_t count)
+{
+    if (16 * count < live_)
+    {
+        for (std::size_t i = 0; i < count; ++i)
+            requireValid(boxes[i], "SweepAndPrune::updateMany");
+        for (std::size_t i = 0; i < count; ++i)
+            update(handles[i], boxes[i]);
+        return;
+    }
+    for (std::size_t i = 0; i < count; ++i)
+        requireValid(boxes[i], "SweepAndPrune::updateMany");
+    // Every new box first (events test the new boxes), then each list sorted whole.
+    for (std::size_t i = 0; i < count; ++i)
+    {
+        Body &b = bodies_[handles[i].index];
+        b.box = boxes[i];
+        for (std::size_t k = 0; k < 3; ++k)
+        {
+            axes_[k][b.position[k][0]].value = boxes[i].lower[int(k)];
+            axes_[k][b.position[k][1]].value = boxes[i].upper[int(k)];
+        }
+    }
+    for (int axis = 0; axis < 3; ++axis)
+        sortWholeAxis(axis);
+}
+
 void SweepAndPrune::remove(BodyHandle handle)
 {
     const std::uint32_t index = handle.index;

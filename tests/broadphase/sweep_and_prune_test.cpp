@@ -157,6 +157,12 @@ public:
         std::uniform_real_distribution<double> u(0.0, 1.0);
         for (int step = 0; step < o_.steps; ++step)
         {
+            // Odd steps move the bodies through updateMany (one batch), even steps one by one;
+            // every third odd step moves only a few bodies (the batch then updates one by one).
+            const bool batch = step % 2 == 1;
+            const bool few = step % 6 == 1;
+            std::vector<BodyHandle> handles;
+            std::vector<BroadPhaseBox> boxes;
             for (Mover &m : movers_)
             {
                 if (m.isStatic)
@@ -169,10 +175,17 @@ public:
                     m.velocity = randomVelocity();
                 if (u(rng_) < 0.02)
                     m.half = randomHalf();
+                if (few && u(rng_) < 0.9)
+                    continue;
                 const BroadPhaseBox b = boxOf(m);
-                sap_.update(m.sap, b);
+                if (batch)
+                    handles.push_back(m.sap), boxes.push_back(b);
+                else
+                    sap_.update(m.sap, b);
                 brute_.update(m.brute, b);
             }
+            if (batch)
+                sap_.updateMany(handles.data(), boxes.data(), handles.size());
             // Occasional removes and adds (the scene size drifts but stays near its start).
             if (!movers_.empty() && u(rng_) < 0.3)
             {
