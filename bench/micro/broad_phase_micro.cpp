@@ -28,6 +28,7 @@
 #include <cstring>
 #include <memory>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 using namespace hcd;
@@ -85,6 +86,7 @@ struct Measured
 {
     double medianNs = 0.0;
     std::size_t pairs = 0;
+    double swapsPerStep = 0.0;  // endpoint swaps (sweep and prune only)
 };
 
 template <typename Phase, bool Batch = false>
@@ -98,6 +100,8 @@ Measured runHybridcd(int n, double jumps, int steps)
     std::vector<UserDataPair> pairs;
     std::vector<BroadPhaseBox> boxes(static_cast<std::size_t>(n));
     phase.overlappingPairs(pairs);
+    if constexpr (std::is_same_v<Phase, SweepAndPrune>)
+        phase.resetSwaps();
     std::vector<double> ns;
     for (int s = 0; s < steps; ++s)
     {
@@ -117,7 +121,10 @@ Measured runHybridcd(int n, double jumps, int steps)
         phase.overlappingPairs(pairs);
         ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count());
     }
-    return {median(ns), pairs.size()};
+    double swaps = 0.0;
+    if constexpr (std::is_same_v<Phase, SweepAndPrune>)
+        swaps = double(phase.swaps()) / double(steps);
+    return {median(ns), pairs.size(), swaps};
 }
 
 struct PairRecorder
@@ -190,7 +197,7 @@ int main(int argc, char **argv)
     for (const double jumps : {0.0, 0.01})
     {
         std::printf("%s\n", jumps == 0.0 ? "coherent motion only" : "coherent motion, 1% of the boxes jump each step");
-        std::printf("%-8s %-36s %14s %8s %8s\n", "N", "method", "median ns/step", "pairs", "x SAP");
+        std::printf("%-8s %-36s %14s %8s %8s %12s\n", "N", "method", "median ns/step", "pairs", "x SAP", "swaps/step");
         for (const int n : {100, 1000, 10000})
         {
             const int steps = n <= 100 ? 400 : n <= 1000 ? 100 : 30;
@@ -200,7 +207,8 @@ int main(int argc, char **argv)
             const Measured tree = runFcl<fcl::DynamicAABBTreeCollisionManagerd>(n, jumps, steps);
             const Measured fclSap = runFcl<fcl::SaPCollisionManagerd>(n, jumps, steps);
             const auto row = [&](const char *name, const Measured &m) {
-                std::printf("%-8d %-36s %14.0f %8zu %8.2f\n", n, name, m.medianNs, m.pairs, m.medianNs / sap.medianNs);
+                std::printf("%-8d %-36s %14.0f %8zu %8.2f %12.0f\n", n, name, m.medianNs, m.pairs,
+                            m.medianNs / sap.medianNs, m.swapsPerStep);
             };
             row("hybridcd SweepAndPrune (updateMany)", sap);
             row("hybridcd SweepAndPrune (update each)", sapOneByOne);

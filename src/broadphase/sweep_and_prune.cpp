@@ -26,7 +26,7 @@ void BodyPairSet::grow()
             insert(k);
 }
 
-void BodyPairSet::insert(std::uint64_t key)
+bool BodyPairSet::insert(std::uint64_t key)
 {
     if (2 * (size_ + 1) > slots_.size())
         grow();
@@ -34,12 +34,12 @@ void BodyPairSet::insert(std::uint64_t key)
     for (std::size_t s = slotOf(key);; s = (s + 1) & mask)
     {
         if (slots_[s] == key)
-            return;
+            return false;
         if (slots_[s] == kEmpty)
         {
             slots_[s] = key;
             ++size_;
-            return;
+            return true;
         }
     }
 }
@@ -58,20 +58,20 @@ bool BodyPairSet::contains(std::uint64_t key) const
     }
 }
 
-void BodyPairSet::erase(std::uint64_t key)
+bool BodyPairSet::erase(std::uint64_t key)
 {
     if (size_ == 0)
-        return;
+        return false;
     const std::size_t mask = slots_.size() - 1;
     for (std::size_t s = slotOf(key);; s = (s + 1) & mask)
     {
         if (slots_[s] == key)
         {
             eraseSlot(s);
-            return;
+            return true;
         }
         if (slots_[s] == kEmpty)
-            return;
+            return false;
     }
 }
 
@@ -97,18 +97,6 @@ void BodyPairSet::eraseSlot(std::size_t hole)
     }
     slots_[hole] = kEmpty;
     --size_;
-}
-
-void BodyPairSet::eraseBody(std::uint32_t index)
-{
-    // Collect first: erasing while scanning would move keys past the scan.
-    std::vector<std::uint64_t> doomed;
-    forEach([&](std::uint64_t k) {
-        if (first(k) == index || second(k) == index)
-            doomed.push_back(k);
-    });
-    for (const std::uint64_t k : doomed)
-        erase(k);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -138,8 +126,16 @@ void SweepAndPrune::pairStarts(std::uint32_t a, std::uint32_t b)
 {
     const Body &x = bodies_[a];
     const Body &y = bodies_[b];
-    if (x.filter.accepts(y.filter) && broadPhaseBoxesOverlap(x.box, y.box))
-        pairs_.insert(BodyPairSet::key(a, b));
+    if (x.filter.accepts(y.filter) && broadPhaseBoxesOverlap(x.box, y.box) && pairs_.insert(BodyPairSet::key(a, b)))
+        ++pairsOf_[a], ++pairsOf_[b];
+}
+
+// The pair (a, b) is apart on one axis: out of the set. Most such events are of pairs that were
+// never in it (apart on another axis), which the per-body counts rule out without a lookup.
+void SweepAndPrune::pairEnds(std::uint32_t a, std::uint32_t b)
+{
+    if (pairsOf_[a] != 0 && pairsOf_[b] != 0 && pairs_.erase(BodyPairSet::key(a, b)))
+        --pairsOf_[a], --pairsOf_[b];
 }
 
 // Moves the endpoint at `at` towards the front of its list while its predecessor sorts above it.
@@ -158,17 +154,17 @@ void SweepAndPrune::sortDown(int axis, std::uint32_t at)
         if ((p.tag ^ e.tag) & 1u)
         {
             if (upper)  // our upper end passes below their lower end: apart on this axis
-                pairs_.erase(BodyPairSet::key(body, other));
+                pairEnds(body, other);
             else  // our lower end passes below their upper end: overlapping on this axis
                 pairStarts(body, other);
         }
         list[at] = p;
-        bodies_[other].position[std::size_t(axis)][p.tag & 1u] = at;
+        positions_[other][std::size_t(axis)][p.tag & 1u] = at;
         --at;
         ++swaps_;
     }
     list[at] = e;
-    bodies_[body].position[std::size_t(axis)][upper ? 1 : 0] = at;
+    positions_[body][std::size_t(axis)][upper ? 1 : 0] = at;
 }
 
 // Moves the endpoint at `at` towards the back of its list while its successor sorts below it.
@@ -190,15 +186,15 @@ void SweepAndPrune::sortUp(int axis, std::uint32_t at)
             if (upper)  // our upper end passes above their lower end: overlapping on this axis
                 pairStarts(body, other);
             else  // our lower end passes above their upper end: apart on this axis
-                pairs_.erase(BodyPairSet::key(body, other));
+                pairEnds(body, other);
         }
         list[at] = n;
-        bodies_[other].position[std::size_t(axis)][n.tag & 1u] = at;
+        positions_[other][std::size_t(axis)][n.tag & 1u] = at;
         ++at;
         ++swaps_;
     }
     list[at] = e;
-    bodies_[body].position[std::size_t(axis)][upper ? 1 : 0] = at;
+    positions_[body][std::size_t(axis)][upper ? 1 : 0] = at;
 }
 
 BodyHandle SweepAndPrune::add(const BroadPhaseBox &box, std::uint32_t userData, BroadPhaseFilter filter)
@@ -216,6 +212,8 @@ BodyHandle SweepAndPrune::add(const BroadPhaseBox &box, std::uint32_t userData, 
             throw std::length_error("SweepAndPrune::add: too many bodies");
         index = std::uint32_t(bodies_.size());
         bodies_.emplace_back();
+        positions_.emplace_back();
+        pairsOf_.push_back(0);
     }
     Body &b = bodies_[index];
     b.box = box;
@@ -231,9 +229,9 @@ BodyHandle SweepAndPrune::add(const BroadPhaseBox &box, std::uint32_t userData, 
         const std::uint32_t at = std::uint32_t(list.size());
         list.push_back({box.lower[axis], index << 1});
         list.push_back({box.upper[axis], (index << 1) | 1u});
-        b.position[std::size_t(axis)] = {at, at + 1};
+        positions_[index][std::size_t(axis)] = {at, at + 1};
         sortDown(axis, at);
-        sortDown(axis, bodies_[index].position[std::size_t(axis)][1]);
+        sortDown(axis, positions_[index][std::size_t(axis)][1]);
     }
     return BodyHandle{index};
 }
@@ -242,24 +240,25 @@ void SweepAndPrune::update(BodyHandle handle, const BroadPhaseBox &box)
 {
     requireValid(box, "SweepAndPrune::update");
     Body &b = bodies_[handle.index];
+    const Position &position = positions_[handle.index];
     const BroadPhaseBox old = b.box;
     b.box = box;  // every event below tests the new boxes
     for (int axis = 0; axis < 3; ++axis)
     {
         const std::size_t k = std::size_t(axis);
         std::vector<Endpoint> &list = axes_[k];
-        list[b.position[k][0]].value = box.lower[axis];
-        list[b.position[k][1]].value = box.upper[axis];
+        list[position[k][0]].value = box.lower[axis];
+        list[position[k][1]].value = box.upper[axis];
         // Outward moves first (they cannot meet the body's other endpoint), then inward ones,
         // which stop at the other endpoint at the latest since lower sorts below upper.
         if (box.lower[axis] < old.lower[axis])
-            sortDown(axis, b.position[k][0]);
+            sortDown(axis, position[k][0]);
         if (box.upper[axis] > old.upper[axis])
-            sortUp(axis, b.position[k][1]);
+            sortUp(axis, position[k][1]);
         if (box.lower[axis] > old.lower[axis])
-            sortUp(axis, b.position[k][0]);
+            sortUp(axis, position[k][0]);
         if (box.upper[axis] < old.upper[axis])
-            sortDown(axis, b.position[k][1]);
+            sortDown(axis, position[k][1]);
     }
 }
 
@@ -283,7 +282,7 @@ void SweepAndPrune::sortWholeAxis(int axis)
             if ((p.tag ^ e.tag) & 1u)
             {
                 if (upper)
-                    pairs_.erase(BodyPairSet::key(body, p.tag >> 1));
+                    pairEnds(body, p.tag >> 1);
                 else
                     pairStarts(body, p.tag >> 1);
             }
@@ -294,7 +293,7 @@ void SweepAndPrune::sortWholeAxis(int axis)
         list[at] = e;
     }
     for (std::uint32_t i = 0; i < n; ++i)
-        bodies_[list[i].tag >> 1].position[std::size_t(axis)][list[i].tag & 1u] = i;
+        positions_[list[i].tag >> 1][std::size_t(axis)][list[i].tag & 1u] = i;
 }
 
 void SweepAndPrune::updateMany(const BodyHandle *handles, const BroadPhaseBox *boxes, std::size_t count)
@@ -312,12 +311,12 @@ void SweepAndPrune::updateMany(const BodyHandle *handles, const BroadPhaseBox *b
     // Every new box first (events test the new boxes), then each list sorted whole.
     for (std::size_t i = 0; i < count; ++i)
     {
-        Body &b = bodies_[handles[i].index];
-        b.box = boxes[i];
+        bodies_[handles[i].index].box = boxes[i];
+        const Position &position = positions_[handles[i].index];
         for (std::size_t k = 0; k < 3; ++k)
         {
-            axes_[k][b.position[k][0]].value = boxes[i].lower[int(k)];
-            axes_[k][b.position[k][1]].value = boxes[i].upper[int(k)];
+            axes_[k][position[k][0]].value = boxes[i].lower[int(k)];
+            axes_[k][position[k][1]].value = boxes[i].upper[int(k)];
         }
     }
     for (int axis = 0; axis < 3; ++axis)
@@ -328,11 +327,12 @@ void SweepAndPrune::remove(BodyHandle handle)
 {
     const std::uint32_t index = handle.index;
     Body &b = bodies_[index];
-    pairs_.eraseBody(index);
+    pairs_.eraseBody(index, [&](std::uint32_t partner) { --pairsOf_[partner]; });
+    pairsOf_[index] = 0;
     for (std::size_t k = 0; k < 3; ++k)
     {
         std::vector<Endpoint> &list = axes_[k];
-        const std::uint32_t lo = b.position[k][0], hi = b.position[k][1];
+        const std::uint32_t lo = positions_[index][k][0], hi = positions_[index][k][1];
         // Close both gaps: [lo+1, hi) moves back by one, (hi, end) by two.
         std::uint32_t to = lo;
         for (std::uint32_t from = lo + 1; from < std::uint32_t(list.size()); ++from)
@@ -340,7 +340,7 @@ void SweepAndPrune::remove(BodyHandle handle)
             if (from == hi)
                 continue;
             list[to] = list[from];
-            bodies_[list[to].tag >> 1].position[k][list[to].tag & 1u] = to;
+            positions_[list[to].tag >> 1][k][list[to].tag & 1u] = to;
             ++to;
         }
         list.resize(list.size() - 2);
@@ -394,7 +394,7 @@ bool SweepAndPrune::validate() const
             if (i > 0 && below(list[i], list[i - 1]))
                 return false;
             const Body &b = bodies_[list[i].tag >> 1];
-            if (!b.live || b.position[k][list[i].tag & 1u] != i)
+            if (!b.live || positions_[list[i].tag >> 1][k][list[i].tag & 1u] != i)
                 return false;
             const double expected = (list[i].tag & 1u) ? b.box.upper[int(k)] : b.box.lower[int(k)];
             if (!(list[i].value == expected))
@@ -412,6 +412,8 @@ bool SweepAndPrune::validate() const
                 return false;
             expectedPairs += reported;
         }
-    return expectedPairs == pairs_.size();
+    std::vector<std::uint32_t> counts(bodies_.size(), 0);
+    pairs_.forEach([&](std::uint64_t k) { ++counts[BodyPairSet::first(k)], ++counts[BodyPairSet::second(k)]; });
+    return expectedPairs == pairs_.size() && counts == pairsOf_;
 }
 }  // namespace hcd

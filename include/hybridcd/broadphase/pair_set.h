@@ -24,13 +24,28 @@ public:
     static std::uint32_t first(std::uint64_t key) { return std::uint32_t(key >> 32); }
     static std::uint32_t second(std::uint64_t key) { return std::uint32_t(key); }
 
-    /// Adds the pair (no effect if present).
-    void insert(std::uint64_t key);
-    /// Removes the pair (no effect if absent).
-    void erase(std::uint64_t key);
+    /// Adds the pair (no effect if present); true when it was absent.
+    bool insert(std::uint64_t key);
+    /// Removes the pair (no effect if absent); true when it was present.
+    bool erase(std::uint64_t key);
     bool contains(std::uint64_t key) const;
-    /// Removes every pair that has `index` as one of its bodies (O(capacity)).
-    void eraseBody(std::uint32_t index);
+    /// Removes every pair that has `index` as one of its bodies (O(capacity)) and calls
+    /// partner(j) for the other body j of each.
+    template <typename F>
+    void eraseBody(std::uint32_t index, F partner)
+    {
+        // Collect first: erasing while scanning would move keys past the scan.
+        doomed_.clear();
+        forEach([&](std::uint64_t k) {
+            if (first(k) == index || second(k) == index)
+                doomed_.push_back(k);
+        });
+        for (const std::uint64_t k : doomed_)
+        {
+            erase(k);
+            partner(first(k) == index ? second(k) : first(k));
+        }
+    }
     std::size_t size() const { return size_; }
 
     /// Calls f(key) for every pair, in table order.
@@ -54,5 +69,6 @@ private:
     std::vector<std::uint64_t> slots_;  // power-of-two size, kEmpty where free
     std::size_t size_ = 0;
     int shift_ = 64;
+    std::vector<std::uint64_t> doomed_;  // eraseBody's scratch
 };
 }  // namespace hcd

@@ -117,6 +117,7 @@ public:
 
     /// Endpoint swaps done by updates and adds so far (a measure of the work coherence saved).
     std::uint64_t swaps() const { return swaps_; }
+    void resetSwaps() { swaps_ = 0; }
 
     /// Checks the internal invariants (sorted lists, endpoint positions, the pair set equal to a
     /// recomputation); O(N^2). For tests.
@@ -129,21 +130,27 @@ private:
         double value;
         std::uint32_t tag;
     };
+    // What an event reads, in one 64-byte record per body; the endpoint positions, which every
+    // swap writes, are kept apart in `positions_`.
     struct Body
     {
         BroadPhaseBox box;
         std::uint32_t userData = 0;
         BroadPhaseFilter filter;
-        std::array<std::array<std::uint32_t, 2>, 3> position{};  // index in each axis list
         bool live = false;
     };
+    // Index of a body's lower and upper endpoint in each axis list.
+    using Position = std::array<std::array<std::uint32_t, 2>, 3>;
 
     void sortDown(int axis, std::uint32_t at);
     void sortUp(int axis, std::uint32_t at);
     void pairStarts(std::uint32_t a, std::uint32_t b);
+    void pairEnds(std::uint32_t a, std::uint32_t b);
     void sortWholeAxis(int axis);
 
     std::vector<Body> bodies_;
+    std::vector<Position> positions_;
+    std::vector<std::uint32_t> pairsOf_;  // number of pairs in the set per body
     std::vector<std::uint32_t> free_;
     std::array<std::vector<Endpoint>, 3> axes_;
     BodyPairSet pairs_;
