@@ -24,7 +24,6 @@ constexpr double kPivotTolerance = 1e-11;
 constexpr int kDegenerateRun = 6;
 // As the slack LP: a witness violating by less than this fraction of the tolerance is rounding.
 constexpr double kRoundingFraction = 1e-4;
-}  // namespace
 
 // The simplex over the workspace's tableau. Columns: faces 0..m-1, surpluses m..m+2, artificials
 // m+3..m+5; each column holds its three constraint-row entries and its reduced cost.
@@ -37,7 +36,6 @@ struct DualSimplex
         Failed,
     };
 
-    DualLpWorkspace &ws;
     int m = 0;
     int columns = 0;
     double *t = nullptr;  // column k at t[4 k .. 4 k + 3]
@@ -45,8 +43,6 @@ struct DualSimplex
     int basis[3] = {0, 0, 0};
     int pivots = 0;
     int entering = -1;  // the unbounded column, when Unbounded
-
-    explicit DualSimplex(DualLpWorkspace &w) : ws(w) {}
 
     double &at(int row, int column) { return t[4 * column + row]; }
 
@@ -135,8 +131,6 @@ struct DualSimplex
     }
 };
 
-namespace
-{
 // The plane with normal along `direction` halfway between the vertex projections, when they are
 // more than `minimumGap` apart.
 bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap,
@@ -307,7 +301,7 @@ DualLpResult intersectConvexPiecesDual(const ConvexPiece &a, const ConvexPiece &
 
     // The tableau: row j is sum_i n_ij lambda_i - s_j (+ r_j) = c_j, negated where c_j <= 0 so
     // that the surplus starts basic at -c_j >= 0; where c_j > 0 the artificial r_j starts basic.
-    DualSimplex simplex(workspace);
+    DualSimplex simplex;
     simplex.m = m;
     simplex.columns = m + 6;
     simplex.t = workspace.tableau.data();

@@ -95,7 +95,6 @@ public:
     void resetCounters() { counters_ = Counters{}; }
 
 private:
-    friend struct DualSimplex;
     friend DualLpResult intersectConvexPiecesDual(const ConvexPiece &, const ConvexPiece &, DualLpWorkspace &,
                                                   const Vec3 &);
     Counters counters_;
