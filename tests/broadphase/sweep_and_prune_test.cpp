@@ -113,6 +113,52 @@ TEST(SweepAndPrune, HandlesAreReusedAfterRemove)
     EXPECT_TRUE(sap.validate());
 }
 
+// Degenerate scenes: every box the same, every box the same point, a chain of boxes touching end
+// to end, all moved together (every endpoint ties with others at every step).
+TEST(SweepAndPrune, DegenerateScenes)
+{
+    const int n = 120;
+    for (int scene = 0; scene < 3; ++scene)
+    {
+        SweepAndPrune sap;
+        BruteForceBroadPhase brute;
+        std::vector<BodyHandle> a, b;
+        const auto boxOf = [&](int i, double shift) {
+            const Vec3 s = Vec3::Constant(shift);
+            if (scene == 0)
+                return box(s, s + Vec3::Ones());
+            if (scene == 1)
+                return box(s, s);
+            return box(s + Vec3(i, 0, 0), s + Vec3(i + 1, 1, 1));  // chain along x
+        };
+        for (int i = 0; i < n; ++i)
+        {
+            a.push_back(sap.add(boxOf(i, 0.0), std::uint32_t(i)));
+            b.push_back(brute.add(boxOf(i, 0.0), std::uint32_t(i)));
+        }
+        for (int step = 0; step < 6; ++step)
+        {
+            std::vector<UserDataPair> fast, reference;
+            sap.overlappingPairs(fast);
+            brute.overlappingPairs(reference);
+            EXPECT_EQ(fast, reference) << "scene " << scene << ", step " << step;
+            EXPECT_EQ(fast.size(), scene == 2 ? std::size_t(n - 1) : std::size_t(n * (n - 1) / 2));
+            EXPECT_TRUE(sap.validate());
+            // Move the bodies together, one by one on even steps, in one batch on odd ones.
+            std::vector<BroadPhaseBox> boxes;
+            for (int i = 0; i < n; ++i)
+            {
+                boxes.push_back(boxOf(i, 0.25 * (step + 1)));
+                brute.update(b[std::size_t(i)], boxes.back());
+                if (step % 2 == 0)
+                    sap.update(a[std::size_t(i)], boxes.back());
+            }
+            if (step % 2 == 1)
+                sap.updateMany(a.data(), boxes.data(), a.size());
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Random scenes.
 
