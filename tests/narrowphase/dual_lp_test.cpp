@@ -14,10 +14,29 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <new>
 #include <string>
 #include <vector>
+
+// Counts every allocation of the program, so a test can check that a warm solve makes none. (GCC
+// takes the inlined standard allocator's delete for a mismatch with this malloc-based new.)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+static std::atomic<long> allocations{0};
+void *operator new(std::size_t size)
+{
+    ++allocations;
+    if (void *p = std::malloc(size ? size : 1))
+        return p;
+    throw std::bad_alloc();
+}
+void operator delete(void *p) noexcept { std::free(p); }
+void operator delete(void *p, std::size_t) noexcept { std::free(p); }
 
 namespace hcd
 {
@@ -406,6 +425,30 @@ TEST(DualLp, CountersAndPhaseOne)
     EXPECT_EQ(ws.counters().solves, 3u);
     EXPECT_EQ(ws.counters().fallbacks, 0u);
     EXPECT_GT(ws.counters().pivots, 0u);
+}
+// Once a workspace has seen the largest pair, solving allocates nothing (both objectives, hits
+// and misses).
+TEST(DualLp, WarmSolvesDoNotAllocate)
+{
+    TestRandom rng(test::seeded(12));
+    std::vector<std::pair<ConvexPiece, ConvexPiece>> pairs;
+    for (int i = 0; i < 200; ++i)
+        pairs.emplace_back(
+            ConvexPiece::hullOf(randomCloud(rng, 40, 1.0)),
+            ConvexPiece::hullOf(randomCloud(rng, 40, 1.0)).transformed(randomPose(rng, 1.2 * randomInBall(rng))));
+    DualLpWorkspace ws;
+    for (const auto &p : pairs)  // warm up
+        intersectConvexPiecesDual(p.first, p.second, ws);
+    int hits = 0;
+    const long before = allocations.load();
+    for (const auto &p : pairs)
+    {
+        hits += intersectConvexPiecesDual(p.first, p.second, ws).intersecting;
+        hits += intersectConvexPiecesDual(p.first, p.second, ws, kDualLpReviewObjective).intersecting;
+    }
+    EXPECT_EQ(allocations.load() - before, 0);
+    EXPECT_GT(hits, 0);
+    EXPECT_LT(hits, 400);
 }
 }  // namespace
 }  // namespace hcd
