@@ -15,7 +15,7 @@ import sys
 LEVELS = [
     ["geometry"],             # transforms, exact predicates, triangle tests, meshes, CollisionScene
     ["bv", "narrowphase"],    # bounding volumes; convex pieces and linear programs
-    ["bvh"],                  # volume trees over any bounding volume
+    ["bvh", "broadphase"],    # volume trees over any bounding volume; sweep and prune over body boxes
     ["query", "io"],          # collision checkers; problem files and meshes
     ["scene"],                # scenes of many bodies: broad phase, pair checks, motions
     ["ompl", "fcl", "render"],  # OMPL adapters; FCL as a checker; pictures and glTF scenes

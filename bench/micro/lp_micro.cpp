@@ -3,13 +3,19 @@
 // pieces with 8, 20, 64 and 256 faces (hulls of random points on a sphere, so every point is a
 // vertex and a hull of V points has 2V - 4 triangular faces), for the slack LP (4D Seidel, the
 // library's test), the review's plain 3D primal feasibility LP, and the separating-axis test.
+// The *Warm benchmarks and the dual simplex (eq. 4, dual_lp.h; with the default objective and
+// with the review's x + y + z, which needs phase 1) keep one workspace across calls, as a query
+// context does, on pieces of 8, 20 and 60 faces; the dual reports its pivots per solve and the
+// fraction of answers that fell back to the slack LP.
 //
 //   build/bench/hybridcd_bench_lp_micro --benchmark_format=json > lp_micro.json
 #include "hybridcd/narrowphase/convex_piece.h"
+#include "hybridcd/narrowphase/dual_lp.h"
 #include "hybridcd/narrowphase/linear_program.h"
 
 #include <benchmark/benchmark.h>
 
+#include <map>
 #include <random>
 #include <utility>
 #include <vector>
@@ -36,9 +42,8 @@ Vec3 randomUnit(std::mt19937_64 &rng)
 // first (radius 1), so that about half of the pairs intersect.
 const std::vector<std::pair<ConvexPiece, ConvexPiece>> &piecePairs(int faces)
 {
-    static std::vector<std::pair<ConvexPiece, ConvexPiece>> cache[4];
-    const int slot = faces == 8 ? 0 : faces == 20 ? 1 : faces == 64 ? 2 : 3;
-    auto &pairs = cache[slot];
+    static std::map<int, std::vector<std::pair<ConvexPiece, ConvexPiece>>> cache;
+    auto &pairs = cache[faces];
     if (pairs.empty())
     {
         std::mt19937_64 rng{std::uint64_t(faces)};
@@ -94,4 +99,38 @@ void BM_SatIntersect(benchmark::State &state)
     runPairs(state, [](const ConvexPiece &a, const ConvexPiece &b) { return convexPiecesIntersectSat(a, b); });
 }
 BENCHMARK(BM_SatIntersect)->Arg(8)->Arg(20)->Arg(64)->Arg(256);
+
+void BM_LpIntersectWarm(benchmark::State &state)
+{
+    LpWorkspace workspace;
+    runPairs(state, [&](const ConvexPiece &a, const ConvexPiece &b) {
+        return intersectConvexPieces(a, b, workspace).intersecting;
+    });
+}
+BENCHMARK(BM_LpIntersectWarm)->Arg(8)->Arg(20)->Arg(60);
+
+void BM_PrimalFeasibilityWarm(benchmark::State &state)
+{
+    LpWorkspace workspace;
+    runPairs(state,
+             [&](const ConvexPiece &a, const ConvexPiece &b) { return convexPiecesIntersectPrimal(a, b, workspace); });
+}
+BENCHMARK(BM_PrimalFeasibilityWarm)->Arg(8)->Arg(20)->Arg(60);
+
+void dualLp(benchmark::State &state, const Vec3 &objective)
+{
+    DualLpWorkspace workspace;
+    runPairs(state, [&](const ConvexPiece &a, const ConvexPiece &b) {
+        return intersectConvexPiecesDual(a, b, workspace, objective).intersecting;
+    });
+    const DualLpWorkspace::Counters &c = workspace.counters();
+    state.counters["pivots per solve"] = double(c.pivots) / double(c.solves);
+    state.counters["fallback fraction"] = double(c.fallbacks) / double(c.solves);
+}
+
+void BM_DualSimplex(benchmark::State &state) { dualLp(state, kDualLpDefaultObjective); }
+BENCHMARK(BM_DualSimplex)->Arg(8)->Arg(20)->Arg(60);
+
+void BM_DualSimplexReviewObjective(benchmark::State &state) { dualLp(state, kDualLpReviewObjective); }
+BENCHMARK(BM_DualSimplexReviewObjective)->Arg(8)->Arg(20)->Arg(60);
 }  // namespace
