@@ -13,7 +13,7 @@ namespace
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 const char *const kKindNames[kShapeKindCount] = {"sphere",    "box",       "capsule", "cylinder", "cone",
-                                                  "ellipsoid", "halfspace", "convex",  "mesh"};
+                                                 "ellipsoid", "halfspace", "convex",  "mesh"};
 
 void requirePositive(double value, const char *what)
 {

@@ -10,6 +10,7 @@ namespace hcd
 namespace
 {
 constexpr double kMarginRelative = 1e-12;
+constexpr int kMaxRestarts = 200;
 
 // The simplex: up to four points w = a - b of the Minkowski difference with their sources.
 struct Simplex
@@ -132,7 +133,16 @@ Vec3 reduceSimplex(Simplex &s, bool &contained)
     else
     {
         // A face is a candidate when the origin is not strictly on the side of the opposite vertex.
+        // A flat tetrahedron (6 volume below 1e-9 of its longest edge cubed: four support points
+        // of a curved surface, close together) leaves those signs to rounding, so then every face
+        // is a candidate and containment is never concluded.
         const std::array<std::array<int, 4>, 4> faces{{{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}}};
+        double longest = 0.0;
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j)
+                longest = std::max(longest, (s.w[i] - s.w[j]).norm());
+        const double volume6 = std::abs((s.w[1] - s.w[0]).cross(s.w[2] - s.w[0]).dot(s.w[3] - s.w[0]));
+        const bool flat = !(volume6 > 1e-9 * longest * longest * longest);
         bool anyCandidate = false;
         double best = std::numeric_limits<double>::infinity();
         for (const auto &f : faces)
@@ -140,7 +150,7 @@ Vec3 reduceSimplex(Simplex &s, bool &contained)
             const Vec3 &p = s.w[f[0]], &q = s.w[f[1]], &r = s.w[f[2]], &opposite = s.w[f[3]];
             const Vec3 n = (q - p).cross(r - p);
             const double originSide = -n.dot(p), vertexSide = n.dot(opposite - p);
-            if (originSide * vertexSide > 0.0)
+            if (!flat && originSide * vertexSide > 0.0)
                 continue;
             anyCandidate = true;
             const Closest t = closestOnTriangle(p, q, r);
@@ -208,6 +218,18 @@ GjkBody GjkBody::placed(const Shape &shape, const RigidTransform &worldFromShape
     if (!shape.isSupportMapped())
         throw std::invalid_argument(std::string("GJK: no support mapping for a ") + shapeKindName(shape.kind()));
     GjkBody body;
+    if (shape.kind() == ShapeKind::Sphere || shape.kind() == ShapeKind::Capsule)
+    {
+        const Vec3 half = worldFromShape.rotation.col(2) * shape.halfLength();
+        body.corners = {worldFromShape.translation - half, worldFromShape.translation + half,
+                        worldFromShape.translation};
+        body.cornerCount = shape.kind() == ShapeKind::Sphere ? 1 : 2;
+        if (body.cornerCount == 1)
+            body.corners[0] = worldFromShape.translation;
+        body.inflation = shape.radius();
+        body.coreScale = worldFromShape.translation.norm() + boundingRadius(shape);
+        return body;
+    }
     body.shape = &shape;
     body.worldFromShape = worldFromShape;
     return body;
@@ -243,13 +265,16 @@ Vec3 GjkBody::support(const Vec3 &direction) const
     return corners[best];
 }
 
-Vec3 GjkBody::centre() const { return shape ? worldFromShape.translation : corners[0]; }
+Vec3 GjkBody::centre() const
+{
+    return shape ? worldFromShape.translation : cornerCount == 2 ? Vec3(0.5 * (corners[0] + corners[1])) : corners[0];
+}
 
 double GjkBody::scale() const
 {
     if (shape)
         return worldFromShape.translation.norm() + boundingRadius(*shape);
-    double m = 0.0;
+    double m = coreScale;
     for (int i = 0; i < cornerCount; ++i)
         m = std::max(m, corners[i].norm());
     return m;
@@ -267,6 +292,9 @@ GjkResult gjkDistance(const GjkBody &a, const GjkBody &b, const GjkRequest &requ
     if (!(d.squaredNorm() > 0.0))
         d = Vec3::UnitX();
 
+    // Spheres and capsules run as their cores (a point, a segment) inflated by their radii:
+    // GJK then converges in finitely many steps on them instead of crawling over a curved face.
+    const double inflation = a.inflation + b.inflation;
     Simplex simplex;
     simplex.a[0] = a.support(-d);
     simplex.b[0] = b.support(d);
@@ -274,14 +302,15 @@ GjkResult gjkDistance(const GjkBody &a, const GjkBody &b, const GjkRequest &requ
     simplex.size = 1;
     Vec3 v = simplex.w[0];
     double lower = 0.0;  // certified
-    double upper = v.norm();
+    int restarts = 0;
+    double upper = v.norm() - inflation;
 
     for (int iteration = 0; iteration < request.maxIterations; ++iteration)
     {
         result.iterations = iteration + 1;
         const double length = v.norm();
-        upper = std::min(upper, length);
-        if (length <= margin)
+        upper = std::min(upper, length - inflation);
+        if (length <= inflation + margin)
         {
             result.verdict = GjkVerdict::Intersecting;
             break;
@@ -289,13 +318,13 @@ GjkResult gjkDistance(const GjkBody &a, const GjkBody &b, const GjkRequest &requ
         const Vec3 u = v / length;
         const Vec3 pa = a.support(-u), pb = b.support(u);
         const Vec3 w = pa - pb;
-        lower = std::max(lower, u.dot(w) - margin);
+        lower = std::max(lower, u.dot(w) - inflation - margin);
         if (lower > 0.0 && request.stopWhenSeparated)
         {
             result.verdict = GjkVerdict::Separated;
             break;
         }
-        if (upper - lower <= request.relativeTolerance * upper + margin)
+        if (upper - lower <= request.relativeTolerance * std::max(upper, 0.0) + margin)
         {
             result.verdict = lower > 0.0 ? GjkVerdict::Separated : GjkVerdict::Intersecting;
             break;
@@ -309,22 +338,57 @@ GjkResult gjkDistance(const GjkBody &a, const GjkBody &b, const GjkRequest &requ
             result.verdict = lower > 0.0 ? GjkVerdict::Separated : GjkVerdict::Undecided;
             break;
         }
+        const Simplex before = simplex;
         simplex.w[simplex.size] = w;
         simplex.a[simplex.size] = pa;
         simplex.b[simplex.size] = pb;
         ++simplex.size;
         bool contained = false;
-        v = reduceSimplex(simplex, contained);
+        const Vec3 next = reduceSimplex(simplex, contained);
         if (contained)
         {
             result.verdict = GjkVerdict::Intersecting;
+            v = next;
             break;
         }
+        // GJK's |v| decreases strictly. When rounding stops that (a flat simplex on a curved
+        // face), collapse the simplex to the single point v (with its points of A and B) and the
+        // new support point w, a well-conditioned segment that still makes progress; a few
+        // times, then stop with the last simplex.
+        if (!(next.squaredNorm() < v.squaredNorm()))
+        {
+            if (restarts < kMaxRestarts)
+            {
+                ++restarts;
+                Vec3 va, vb;
+                witnessPoints(before, va, vb);
+                simplex.w = {va - vb, w, Vec3::Zero(), Vec3::Zero()};
+                simplex.a = {va, pa, Vec3::Zero(), Vec3::Zero()};
+                simplex.b = {vb, pb, Vec3::Zero(), Vec3::Zero()};
+                simplex.size = 2;
+                const Vec3 collapsed = reduceSimplex(simplex, contained);
+                if (collapsed.squaredNorm() < v.squaredNorm())
+                {
+                    v = collapsed;
+                    continue;
+                }
+            }
+            simplex = before;
+            result.verdict = lower > 0.0 ? GjkVerdict::Separated : GjkVerdict::Undecided;
+            break;
+        }
+        v = next;
         if (iteration + 1 == request.maxIterations)
             result.verdict = lower > 0.0 ? GjkVerdict::Separated : GjkVerdict::Undecided;
     }
 
     witnessPoints(simplex, result.pointA, result.pointB);
+    const double vLength = v.norm();
+    if (vLength > 0.0)
+    {
+        result.pointA -= (a.inflation / vLength) * v;
+        result.pointB += (b.inflation / vLength) * v;
+    }
     if (result.verdict == GjkVerdict::Separated)
     {
         result.lowerBound = lower;

@@ -19,8 +19,8 @@ namespace
 {
 constexpr double kMarginRelative = 1e-12;
 
-using PairFunction = ShapePairResult (*)(const Shape &, const RigidTransform &, const Shape &,
-                                         const RigidTransform &, ShapePairQuery, ShapePairScratch &);
+using PairFunction = ShapePairResult (*)(const Shape &, const RigidTransform &, const Shape &, const RigidTransform &,
+                                         ShapePairQuery, ShapePairScratch &);
 
 double pairScale(const Shape &a, const RigidTransform &worldFromA, const Shape &b, const RigidTransform &worldFromB)
 {
@@ -60,8 +60,7 @@ ShapePairResult inflated(const Vec3 &ca, double ra, const Vec3 &cb, double rb, d
 ShapePairResult sphereSphere(const Shape &a, const RigidTransform &wa, const Shape &b, const RigidTransform &wb,
                              ShapePairQuery, ShapePairScratch &)
 {
-    return inflated(wa.translation, a.radius(), wb.translation, b.radius(),
-                    kMarginRelative * pairScale(a, wa, b, wb));
+    return inflated(wa.translation, a.radius(), wb.translation, b.radius(), kMarginRelative * pairScale(a, wa, b, wb));
 }
 
 ShapePairResult sphereCapsule(const Shape &a, const RigidTransform &wa, const Shape &b, const RigidTransform &wb,
@@ -162,8 +161,8 @@ ShapePairResult halfspaceHalfspace(const Shape &a, const RigidTransform &wa, con
     {
         // {na.x <= oa} and {na.x >= -ob}: a gap of -ob - oa between the planes when positive.
         const double gap = -ob - oa;
-        const double margin = kMarginRelative * (wa.translation.norm() + wb.translation.norm() + std::abs(oa) +
-                                                 std::abs(ob));
+        const double margin =
+            kMarginRelative * (wa.translation.norm() + wb.translation.norm() + std::abs(oa) + std::abs(ob));
         const Vec3 onA = na * oa;
         return fromGap(gap, margin, onA, onA + gap * na);
     }
@@ -202,8 +201,8 @@ ShapePairResult gjkBodies(const GjkBody &ga, const GjkBody &gb, bool polytopes, 
         if (polytopes)
         {
             ++scratch.polytopeFallbacks;
-            const IntersectionResult lp = intersectConvexPieces(ConvexPiece::hullOf(polytopeA()),
-                                                                ConvexPiece::hullOf(polytopeB()), scratch.lp);
+            const IntersectionResult lp =
+                intersectConvexPieces(ConvexPiece::hullOf(polytopeA()), ConvexPiece::hullOf(polytopeB()), scratch.lp);
             r.intersecting = lp.intersecting;
             // Disjoint by the LP but below GJK's resolution: a positive distance under the margin.
             r.distance = lp.intersecting ? 0.0 : std::max(-lp.depth, 0.0);
@@ -320,8 +319,8 @@ ShapePairResult shapePair(const Shape &a, const RigidTransform &worldFromA, cons
 ShapePairResult shapeTriangle(const Shape &a, const RigidTransform &worldFromA, const Vec3 &t0, const Vec3 &t1,
                               const Vec3 &t2, ShapePairQuery query, ShapePairScratch &scratch)
 {
-    const double scale = worldFromA.translation.norm() + boundingRadius(a) +
-                         std::max({t0.norm(), t1.norm(), t2.norm()});
+    const double scale =
+        worldFromA.translation.norm() + boundingRadius(a) + std::max({t0.norm(), t1.norm(), t2.norm()});
     const double margin = kMarginRelative * scale;
     switch (a.kind())
     {
@@ -379,7 +378,10 @@ ShapePairResult shapeTriangle(const Shape &a, const RigidTransform &worldFromA, 
     }
     return gjkBodies(
         GjkBody::placed(a, worldFromA), GjkBody::triangle(t0, t1, t2), isPolytope(a),
-        [&] { return worldPolytopePoints(a, worldFromA); }, [&] { return std::vector<Vec3>{t0, t1, t2}; }, query,
-        scratch);
+        [&] { return worldPolytopePoints(a, worldFromA); },
+        [&] {
+            return std::vector<Vec3>{t0, t1, t2};
+        },
+        query, scratch);
 }
 }  // namespace hcd

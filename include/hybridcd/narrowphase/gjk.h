@@ -41,6 +41,11 @@ struct GjkBody
     RigidTransform worldFromShape;
     std::array<Vec3, 3> corners{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  ///< world, when shape is null
     int cornerCount = 0;
+    /// Radius around the core (shape or corners): spheres and capsules are placed as their centre
+    /// point or axis segment inflated by their radius. The body is {x : dist(x, core) <= inflation}.
+    double inflation = 0.0;
+    /// Extra scale of an inflated core (|translation| + bounding radius of the shape).
+    double coreScale = 0.0;
 
     /// The shape placed by `worldFromShape`. Precondition: shape.isSupportMapped().
     static GjkBody placed(const Shape &shape, const RigidTransform &worldFromShape);
@@ -49,7 +54,8 @@ struct GjkBody
     /// The single world point p.
     static GjkBody point(const Vec3 &p);
 
-    /// World point of the body maximising direction . x (direction in world, any length).
+    /// World point of the core maximising direction . x (direction in world, any length); the
+    /// body's own support point is that plus inflation * direction / |direction|.
     Vec3 support(const Vec3 &direction) const;
     /// A world point of the body (its centre for shapes, the first corner otherwise).
     Vec3 centre() const;
@@ -73,7 +79,7 @@ struct GjkRequest
     /// Stop once upperBound - lowerBound <= relativeTolerance * upperBound (+ the rounding margin).
     double relativeTolerance = 1e-10;
     /// Iterations before the query gives up (the bounds then stay valid, only looser).
-    int maxIterations = 200;
+    int maxIterations = 1000;
 };
 
 /// How the verdict was established.

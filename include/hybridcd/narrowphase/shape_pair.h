@@ -53,10 +53,10 @@ struct ShapePairScratch
 {
     GjkWarmStart warmStart;
     LpWorkspace lp;
-    std::uint64_t gjkQueries = 0;        ///< pairs given to GJK
-    std::uint64_t gjkIterations = 0;     ///< their iterations
-    std::uint64_t undecided = 0;         ///< GJK answers neither certified: reported intersecting
-    std::uint64_t polytopeFallbacks = 0; ///< undecided polytope pairs settled by the LP
+    std::uint64_t gjkQueries = 0;         ///< pairs given to GJK
+    std::uint64_t gjkIterations = 0;      ///< their iterations
+    std::uint64_t undecided = 0;          ///< GJK answers neither certified: reported intersecting
+    std::uint64_t polytopeFallbacks = 0;  ///< undecided polytope pairs settled by the LP
 };
 
 /// The pair (a placed by worldFromA, b placed by worldFromB). Throws std::invalid_argument for a
