@@ -150,7 +150,7 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
             for (const CheckerSlot &s : slots)
                 if (s.label == label)
                     throw UsageError("the configuration " + label + " is given twice");
-            slots.push_back({name, motion, options, label, nullptr, nullptr});
+            slots.push_back({name, motion, options, label, nullptr, nullptr, nullptr});
         }
     if (baseline == "omplapp")
     {
@@ -162,7 +162,7 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
         for (const CheckerSlot &s : slots)
             listed = listed || s.label == label;
         if (!listed)
-            slots.push_back({"fcl", MotionCheck::Discrete, {}, label, nullptr, nullptr});
+            slots.push_back({"fcl", MotionCheck::Discrete, {}, label, nullptr, nullptr, nullptr});
     }
     return slots;
 }

@@ -109,6 +109,7 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
         return result;
     }
     const double tolerance = options.contactTolerance > 0.0 ? options.contactTolerance : 1e-9 * scene.scale();
+    const double validMargin = std::max(tolerance, 1e-6 * scene.scale());
     std::vector<RobotSweep> sweeps(robots);
     for (std::size_t r = 0; r < robots; ++r)
     {
@@ -143,7 +144,10 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
             continue;
         }
         const double speed = bodySpeed(scene, p.first, sweeps) + bodySpeed(scene, p.second, sweeps);
-        double t = 0.0;
+        // safeUntil: up to when the pair is known to stay `validMargin` apart, a margin the narrow
+        // phase certifies with room to spare (its undecided band, near touching, is far thinner),
+        // so that the state reported as last valid is checked free, not merely near.
+        double t = 0.0, safeUntil = 0.0;
         for (std::size_t step = 0;; ++step)
         {
             if (found && t >= horizon)
@@ -151,17 +155,21 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
             interpolateScenePoses(start, goal, t, poses);
             const double remaining = (1.0 - t) * speed;
             // The boxes' gap first: when it alone covers a good part of what is left, step on it.
-            const double gap = scene.pairBoundsGap(pair, poses.data()) - tolerance;
+            const double boxGap = scene.pairBoundsGap(pair, poses.data());
+            const double gap = boxGap - tolerance;
             if (gap > 0.0 && (gap >= remaining || gap >= 0.25 * remaining))
             {
                 ++result.boundSteps;
                 if (gap >= remaining)
                     break;
+                if (boxGap > validMargin)
+                    safeUntil = std::max(safeUntil, t + (boxGap - validMargin) / speed);
                 t += gap / speed;
                 continue;
             }
             ++result.distanceQueries;
-            const double clearance = scene.pairDistance(pair, poses.data(), context) - tolerance;
+            const double distance = scene.pairDistance(pair, poses.data(), context);
+            const double clearance = distance - tolerance;
             if (clearance <= 0.0 || step >= options.maxStepsPerPair)
             {
                 if (!found || t < horizon)
@@ -170,15 +178,14 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
                     horizon = t;
                     result.pair = pair;
                     result.contactTime = t;
-                    // Every step kept the pair at least `tolerance` apart up to and including t
-                    // (it moved by at most the clearance it had), so t itself is still free, unless
-                    // the pair already touched at the start.
-                    result.lastValidTime = t;
+                    result.lastValidTime = std::min(safeUntil, t);
                 }
                 break;
             }
             if (clearance >= remaining)
                 break;
+            if (distance > validMargin)
+                safeUntil = std::max(safeUntil, t + (distance - validMargin) / speed);
             t += clearance / speed;
         }
     }
