@@ -168,9 +168,11 @@ int run(const cli::CommandLine &cl)
     FclScene fclScene(*scene);
 
     // Positions over the volume (or the start-goal box grown by the scene's size).
-    Vec3 lo(config.volumeX ? config.volumeX->first : -scene->scale(), config.volumeY ? config.volumeY->first : -scene->scale(),
+    Vec3 lo(config.volumeX ? config.volumeX->first : -scene->scale(),
+            config.volumeY ? config.volumeY->first : -scene->scale(),
             config.volumeZ ? config.volumeZ->first : (config.planar ? 0.0 : -scene->scale()));
-    Vec3 hi(config.volumeX ? config.volumeX->second : scene->scale(), config.volumeY ? config.volumeY->second : scene->scale(),
+    Vec3 hi(config.volumeX ? config.volumeX->second : scene->scale(),
+            config.volumeY ? config.volumeY->second : scene->scale(),
             config.volumeZ ? config.volumeZ->second : (config.planar ? 0.0 : scene->scale()));
     std::mt19937_64 rng(1);
     std::vector<std::vector<RigidTransform>> states;
@@ -223,18 +225,21 @@ int run(const cli::CommandLine &cl)
         {
             const Vec3 d(step(rng), step(rng), config.planar ? 0.0 : step(rng));
             const double yaw = step(rng) / extent;
-            goal[r] = config.planar ? RigidTransform::fromPlanarPose(start[r].translation.x() + d.x(),
-                                                                     start[r].translation.y() + d.y(),
-                                                                     std::atan2(start[r].rotation(1, 0),
-                                                                                start[r].rotation(0, 0)) +
-                                                                         yaw)
-                                    : RigidTransform{start[r].rotation, start[r].translation + d};
+            goal[r] =
+                config.planar
+                    ? RigidTransform::fromPlanarPose(start[r].translation.x() + d.x(), start[r].translation.y() + d.y(),
+                                                     std::atan2(start[r].rotation(1, 0), start[r].rotation(0, 0)) + yaw)
+                    : RigidTransform{start[r].rotation, start[r].translation + d};
             shifted[r] = RigidTransform{start[r].rotation, start[r].translation + d};
             longest = std::max(longest, d.norm());
         }
         SceneMotionResult result;
         continuousNs.push_back(timeNs([&] { result = checkSceneMotion(*scene, start, goal, context); }));
         rejected += result.valid ? 0 : 1;
+        if (continuousNs.back() > 1e7)
+            std::cerr << "slow motion: " << continuousNs.back() / 1e3 << " us, " << result.distanceQueries
+                      << " distance queries, " << result.boundSteps << " box steps, valid " << result.valid << ", pair "
+                      << scene->pairLabel(result.pair) << " at " << result.contactTime << "\n";
         // FCL at OMPL's resolution: states every `resolution` of the longest robot's travel.
         const std::size_t samples = std::max<std::size_t>(1, std::size_t(std::ceil(longest / resolution)));
         bool discreteValid = true;
@@ -250,6 +255,15 @@ int run(const cli::CommandLine &cl)
         lpNs.push_back(timeNs([&] { checkSceneMotion(*scene, start, shifted, context); }));
         noLpNs.push_back(timeNs([&] { checkSceneMotion(*scene, start, shifted, context, noLp); }));
     }
+    auto mean = [](const std::vector<double> &v) {
+        double sum = 0.0;
+        for (double x : v)
+            sum += x;
+        return v.empty() ? 0.0 : sum / double(v.size());
+    };
+    std::cerr << "continuous: mean " << mean(continuousNs) / 1e3 << " us, max "
+              << *std::max_element(continuousNs.begin(), continuousNs.end()) / 1e3 << " us; discrete: mean "
+              << mean(discreteNs) / 1e3 << " us\n";
     std::cout << "Motions: " << continuousNs.size() << " from free states, each robot moving up to about 0.2 of "
               << "the extent; " << rejected << " touch somewhere\n\n"
               << "| motion check | median us/motion | vs FCL discrete |\n|---|---:|---:|\n"
@@ -260,8 +274,8 @@ int run(const cli::CommandLine &cl)
               << " touching motions) | " << bench::median(discreteNs) / 1e3 << " | 1.00 |\n"
               << "| translations: time-augmented LP for polytope pairs | " << bench::median(lpNs) / 1e3 << " | "
               << std::setprecision(2) << bench::median(lpNs) / bench::median(discreteNs) << " |\n"
-              << std::setprecision(1) << "| translations: advancement only | " << bench::median(noLpNs) / 1e3
-              << " | " << std::setprecision(2) << bench::median(noLpNs) / bench::median(discreteNs) << " |\n";
+              << std::setprecision(1) << "| translations: advancement only | " << bench::median(noLpNs) / 1e3 << " | "
+              << std::setprecision(2) << bench::median(noLpNs) / bench::median(discreteNs) << " |\n";
     return 0;
 }
 }  // namespace

@@ -2,8 +2,8 @@
 // `hybridcd bench`: OMPL benchmark runs of a problem's planners with one or more checkers, written
 // as an OMPL benchmark log (readable by ompl_benchmark_statistics), optionally one shard of many.
 #include "command_line.h"
-#include "commands.h"
 #include "command_scene.h"
+#include "commands.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/atomic_file.h"
@@ -11,9 +11,9 @@
 #include "hybridcd/ompl/control_problem.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/ompl/scene_planning.h"
-#include "hybridcd/scene/problem_bodies.h"
 #include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_catalogue.h"
+#include "hybridcd/scene/problem_bodies.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/tools/benchmark/Benchmark.h>
@@ -129,7 +129,7 @@ std::vector<MotionCheck> motionsOf(const CommandLine &cl)
 // set-up (FCL state checks, OMPL's DiscreteMotionValidator; for kinodynamic problems, checks at the
 // propagation steps only) unless --baseline none or already listed.
 std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCatalogue &checkers, bool kinodynamic,
-                                         bool scene)
+                                          bool scene)
 {
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::vector<std::string> names = checkerNamesOf(cl, checkers, options);

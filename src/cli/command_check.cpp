@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `hybridcd check`: one line per pose, 1 collision-free or 0 colliding; a summary on stderr.
 #include "command_line.h"
-#include "commands.h"
 #include "command_scene.h"
+#include "commands.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/path_file.h"

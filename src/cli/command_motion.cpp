@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `hybridcd check-motion` and `hybridcd clearance`: continuous motion checks and distances per line.
 #include "command_line.h"
-#include "commands.h"
 #include "command_scene.h"
+#include "commands.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/path_file.h"

@@ -39,8 +39,8 @@ std::vector<RigidTransform> posesOfLine(const std::vector<double> &values, const
 
 void describe(const LoadedProblem &problem, const Scene &scene, std::ostream &out)
 {
-    out << "scene: " << problem.config.robotCount() << " robot" << (problem.config.robotCount() == 1 ? "" : "s")
-        << ", " << scene.bodies().size() << " bodies, " << scene.pairs().size() << " checked pairs\n";
+    out << "scene: " << problem.config.robotCount() << " robot" << (problem.config.robotCount() == 1 ? "" : "s") << ", "
+        << scene.bodies().size() << " bodies, " << scene.pairs().size() << " checked pairs\n";
 }
 
 }  // namespace
@@ -63,11 +63,12 @@ void requireFreeEnds(const LoadedProblem &problem, const Scene &scene)
         if (const auto contact = scene.firstContact(poses.data(), context))
         {
             std::size_t pair = 0;
-            while (scene.pairs()[pair].first != contact->pair.first || scene.pairs()[pair].second != contact->pair.second)
+            while (scene.pairs()[pair].first != contact->pair.first ||
+                   scene.pairs()[pair].second != contact->pair.second)
                 ++pair;
             throw InputError(problem.config.path, isStart ? problem.config.startLine : problem.config.goalLine,
-                             std::string("the ") + (isStart ? "start" : "goal") + " state collides: " +
-                                 scene.pairLabel(pair));
+                             std::string("the ") + (isStart ? "start" : "goal") +
+                                 " state collides: " + scene.pairLabel(pair));
         }
     }
 }
@@ -154,8 +155,8 @@ int runSceneCheckMotion(const LoadedProblem &problem, const std::string &motions
     std::cout << out.str() << std::flush;
     std::cerr << "checked " << motions.size() << " motions with '" << checkerName << "': " << free << " free, "
               << motions.size() - free << " colliding; mean "
-              << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion ("
-              << distances << " distance queries, " << lpPairs << " pairs by the time-augmented LP)\n";
+              << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion (" << distances
+              << " distance queries, " << lpPairs << " pairs by the time-augmented LP)\n";
     return 0;
 }
 
@@ -199,8 +200,8 @@ int runSceneSolve(const LoadedProblem &problem, const SceneSolveRun &run)
     AtomicFile out(run.outPath);
     writePoses(out.stream(), rows);
     out.commit();
-    std::cout << "states written (interpolated at OMPL's resolution; " << robots << " poses per line): "
-              << rows.size() << '\n'
+    std::cout << "states written (interpolated at OMPL's resolution; " << robots << " poses per line): " << rows.size()
+              << '\n'
               << (approximate ? "APPROXIMATE path written to: " : "path written to: ") << run.outPath << '\n';
     if (approximate)
     {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `hybridcd solve`: plan, simplify, report, write the path in OMPL.app's .path format.
 #include "command_line.h"
-#include "commands.h"
 #include "command_scene.h"
+#include "commands.h"
 #include "problem_checks.h"
 #include "solve_progress.h"
 
@@ -213,7 +213,8 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
                              " is a scene of " + std::to_string(problem.config.robotCount()) + " robots");
         for (const char *option : {"goal-threshold", "propagation-step", "control-steps"})
             if (cl.has(option))
-                throw UsageError(std::string("--") + option + " is for kinodynamic problems (a .cfg with control = ...)");
+                throw UsageError(std::string("--") + option +
+                                 " is for kinodynamic problems (a .cfg with control = ...)");
         SceneSolveRun run;
         run.timeLimit = timeLimit;
         run.outPath = outPath;

@@ -63,9 +63,9 @@ void requireStartAndGoalInVolume(const ProblemConfig &config)
             {
                 std::ostringstream message;
                 message << "the " << end.name << " " << formatPose(pose, config.planar)
-                        << " lies outside the problem's volume: " << end.name << "." << axes[i] << " = "
-                        << position[i] << " is not in [volume.min." << axes[i] << ", volume.max." << axes[i]
-                        << "] = [" << volume[i]->first << ", " << volume[i]->second << "]";
+                        << " lies outside the problem's volume: " << end.name << "." << axes[i] << " = " << position[i]
+                        << " is not in [volume.min." << axes[i] << ", volume.max." << axes[i] << "] = ["
+                        << volume[i]->first << ", " << volume[i]->second << "]";
                 throw InputError(config.path, end.line, message.str());
             }
     }

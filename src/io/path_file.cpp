@@ -97,9 +97,9 @@ std::vector<PoseRecord> parsePoses(std::string_view text, const std::string &sou
     robots = std::max<std::size_t>(robots, 1);
     const std::size_t n = poseColumns(planar);
     const std::string what =
-        planar ? poseWhat(planar, robots, "a planar pose (x y theta)", "planar poses (x y theta each, one per robot)")
-               : poseWhat(planar, robots, "a pose (x y z qx qy qz qw)",
-                          "poses (x y z qx qy qz qw each, one per robot)");
+        planar
+            ? poseWhat(planar, robots, "a planar pose (x y theta)", "planar poses (x y theta each, one per robot)")
+            : poseWhat(planar, robots, "a pose (x y z qx qy qz qw)", "poses (x y z qx qy qz qw each, one per robot)");
     std::vector<PoseRecord> rows = parseRows(text, sourceName, robots * n, what.c_str());
     if (!planar)
         for (PoseRecord &row : rows)

@@ -125,7 +125,9 @@ std::vector<double> sceneRowsOfState(const ob::State *state, bool planar, std::s
 
 SceneValidityChecker::SceneValidityChecker(const ob::SpaceInformationPtr &si, std::shared_ptr<const Scene> scene,
                                            bool planar)
-    : ob::StateValidityChecker(si), scene_(std::move(scene)), planar_(planar)
+    : ob::StateValidityChecker(si),
+      scene_(std::move(scene)),
+      planar_(planar)
 {
     specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::EXACT;
 }
@@ -153,7 +155,9 @@ double SceneValidityChecker::clearance(const ob::State *state) const
 SceneMotionValidator::SceneMotionValidator(const ob::SpaceInformationPtr &si,
                                            std::shared_ptr<const SceneValidityChecker> validity,
                                            SceneMotionOptions options)
-    : ob::MotionValidator(si), validity_(std::move(validity)), options_(options)
+    : ob::MotionValidator(si),
+      validity_(std::move(validity)),
+      options_(options)
 {
 }
 

@@ -74,7 +74,9 @@ struct Scene::MeshPairChecker
 
 Scene::Scene(std::vector<SceneBody> bodies, std::size_t robotCount,
              const std::vector<std::pair<std::size_t, std::size_t>> &allowedPairs, const SceneOptions &options)
-    : bodies_(std::move(bodies)), robotCount_(robotCount), options_(options)
+    : bodies_(std::move(bodies)),
+      robotCount_(robotCount),
+      options_(options)
 {
     // Ids tell contexts which scene their broad phase holds (an address could be reused).
     static std::atomic<std::uint64_t> nextId{1};
@@ -164,8 +166,8 @@ Scene::Scene(std::vector<SceneBody> bodies, std::size_t robotCount,
         {
             std::vector<Vec3> corners;
             for (int c = 0; c < 8; ++c)
-                corners.push_back(Vec3(c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0)
-                                      .cwiseProduct(shape.extents()));
+                corners.push_back(
+                    Vec3(c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0).cwiseProduct(shape.extents()));
             polytopes_[i] = std::make_unique<const ConvexPiece>(ConvexPiece::hullOf(corners));
         }
         else if (shape.kind() == ShapeKind::Convex)
@@ -220,9 +222,9 @@ bool Scene::narrowPhase(std::size_t pair, const RigidTransform *worldFromRobot, 
             *witness = worldFromBody(mesh->moving, worldFromRobot).translation;
         return hit;
     }
-    const BodyPairResult result = bodiesIntersect(*bodies_[p.first].geometry, worldFromBody(p.first, worldFromRobot),
-                                                  *bodies_[p.second].geometry,
-                                                  worldFromBody(p.second, worldFromRobot), context);
+    const BodyPairResult result =
+        bodiesIntersect(*bodies_[p.first].geometry, worldFromBody(p.first, worldFromRobot), *bodies_[p.second].geometry,
+                        worldFromBody(p.second, worldFromRobot), context);
     if (result.intersecting && witness)
         *witness = result.pointA;
     return result.intersecting;
@@ -233,14 +235,57 @@ bool Scene::pairCollides(std::size_t pair, const RigidTransform *worldFromRobot,
     return narrowPhase(pair, worldFromRobot, context, nullptr);
 }
 
-double Scene::pairDistance(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context) const
+double Scene::pairDistance(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context, Vec3 *onFirst,
+                           Vec3 *onSecond) const
 {
     const ScenePair &p = pairs_[pair];
     if (const MeshPairChecker *mesh = meshCheckers_[pair].get())
         return mesh->checker->distance(mesh->relativePose(*this, worldFromRobot), context);
-    return bodiesDistance(*bodies_[p.first].geometry, worldFromBody(p.first, worldFromRobot),
-                          *bodies_[p.second].geometry, worldFromBody(p.second, worldFromRobot), context)
-        .distance;
+    const BodyPairResult result =
+        bodiesDistance(*bodies_[p.first].geometry, worldFromBody(p.first, worldFromRobot), *bodies_[p.second].geometry,
+                       worldFromBody(p.second, worldFromRobot), context);
+    if (onFirst)
+        *onFirst = result.pointA;
+    if (onSecond)
+        *onSecond = result.pointB;
+    return result.distance;
+}
+
+double Scene::supportAlong(std::size_t body, const RigidTransform &worldFromBody, const Vec3 &direction) const
+{
+    const Shape &shape = bodies_[body].geometry->shape();
+    double value = kInfinity, magnitude = worldFromBody.translation.norm();
+    switch (shape.kind())
+    {
+    case ShapeKind::Halfspace:
+    {
+        // Bounded along its own outward normal only: there the support is the plane.
+        const Vec3 normal = worldFromBody.rotation * shape.normal();
+        if (normal == direction)
+            value = shape.offset() + normal.dot(worldFromBody.translation);
+        magnitude += std::abs(shape.offset());
+        break;
+    }
+    case ShapeKind::Mesh:
+    {
+        const TriangleMesh &mesh = *shape.meshPointer();
+        if (mesh.vertices.size() > 4096)
+            return kInfinity;
+        const Vec3 local = worldFromBody.rotation.transpose() * direction;
+        double best = -kInfinity;
+        for (const Vec3 &v : mesh.vertices)
+            best = std::max(best, local.dot(v));
+        value = best + direction.dot(worldFromBody.translation);
+        magnitude += bodies_[body].geometry->boundingRadius();
+        break;
+    }
+    default:
+        value = direction.dot(worldFromBody.apply(supportPoint(shape, worldFromBody.rotation.transpose() * direction)));
+        magnitude += bodies_[body].geometry->boundingRadius();
+        break;
+    }
+    // Rounding of the transform and the support point: a relative 1e-12 of the coordinates.
+    return value + 1e-12 * magnitude;
 }
 
 double Scene::pairBoundsGap(std::size_t pair, const RigidTransform *worldFromRobot) const
@@ -270,8 +315,7 @@ double Scene::distance(const RigidTransform *worldFromRobot, QueryContext &conte
     return best;
 }
 
-std::optional<SceneContact> Scene::bruteForceContact(const RigidTransform *worldFromRobot,
-                                                     QueryContext &context) const
+std::optional<SceneContact> Scene::bruteForceContact(const RigidTransform *worldFromRobot, QueryContext &context) const
 {
     for (std::size_t pair = 0; pair < pairs_.size(); ++pair)
     {
@@ -282,8 +326,7 @@ std::optional<SceneContact> Scene::bruteForceContact(const RigidTransform *world
     return std::nullopt;
 }
 
-std::optional<SceneContact> Scene::broadPhaseContact(const RigidTransform *worldFromRobot,
-                                                     QueryContext &context) const
+std::optional<SceneContact> Scene::broadPhaseContact(const RigidTransform *worldFromRobot, QueryContext &context) const
 {
     BroadPhaseScratch &broad = context.scratch<BroadPhaseScratch>();
     const std::size_t n = bodies_.size();
@@ -294,8 +337,8 @@ std::optional<SceneContact> Scene::broadPhaseContact(const RigidTransform *world
         broad.handles.clear();
         for (std::size_t i = 0; i < n; ++i)
         {
-            const BroadPhaseBox box = bodies_[i].robot < 0 ? staticBounds_[i]
-                                                           : boundsOf(bodies_[i], worldFromBody(i, worldFromRobot));
+            const BroadPhaseBox box =
+                bodies_[i].robot < 0 ? staticBounds_[i] : boundsOf(bodies_[i], worldFromBody(i, worldFromRobot));
             // Statics are never paired with statics.
             broad.handles.push_back(broad.sweep.add(box, std::uint32_t(i),
                                                     bodies_[i].robot < 0 ? BroadPhaseFilter::staticBody()
@@ -329,7 +372,8 @@ std::optional<SceneContact> Scene::firstContact(const RigidTransform *worldFromR
     for (std::size_t r = 0; r < robotCount_; ++r)
         if (!worldFromRobot[r].isFinite())
             return SceneContact{pairs_.empty() ? ScenePair{} : pairs_.front(), Vec3::Zero()};
-    return options_.bruteForce ? bruteForceContact(worldFromRobot, context) : broadPhaseContact(worldFromRobot, context);
+    return options_.bruteForce ? bruteForceContact(worldFromRobot, context)
+                               : broadPhaseContact(worldFromRobot, context);
 }
 
 bool Scene::collides(const RigidTransform *worldFromRobot, QueryContext &context) const

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hcd
 {
@@ -23,8 +24,9 @@ double rotationAngle(const Mat3 &from, const Mat3 &to)
 // Per robot: how far it translates and turns over the whole motion.
 struct RobotSweep
 {
-    double translation = 0.0;  // |dx|, world units
-    double angle = 0.0;        // radians
+    Vec3 displacement = Vec3::Zero();  // dx, world units per unit t
+    double translation = 0.0;          // |dx|
+    double angle = 0.0;                // radians per unit t
     bool rotates = false;
 };
 
@@ -38,6 +40,34 @@ double bodySpeed(const Scene &scene, std::size_t body, const std::vector<RobotSw
     const double reach = b.ownerFromBody.translation.norm() + b.geometry->boundingRadius();
     // A relative 1e-12 for the rounding of the interpolated poses themselves.
     return (sweep.translation + sweep.angle * reach) * (1.0 + 1e-12) + 1e-15 * scene.scale();
+}
+
+// Upper bound on how fast max over the body of direction . x grows per unit t (direction unit, world).
+double supportRate(const Scene &scene, std::size_t body, const Vec3 &direction, const std::vector<RobotSweep> &sweeps)
+{
+    const SceneBody &b = scene.bodies()[body];
+    if (b.robot < 0)
+        return 0.0;
+    const RobotSweep &sweep = sweeps[std::size_t(b.robot)];
+    const double reach = b.ownerFromBody.translation.norm() + b.geometry->boundingRadius();
+    const double rate = direction.dot(sweep.displacement) + sweep.angle * reach;
+    return rate + 1e-12 * (sweep.translation + sweep.angle * reach) + 1e-15 * scene.scale();
+}
+
+// A direction that separates the pair (from its first body to its second) at these poses: a
+// half-space's normal, else the line between the closest points. Zero when there is none.
+Vec3 separatingDirection(const Scene &scene, const ScenePair &p, const std::vector<RigidTransform> &poses,
+                         const Vec3 &onFirst, const Vec3 &onSecond)
+{
+    const Shape &first = scene.bodies()[p.first].geometry->shape(),
+                &second = scene.bodies()[p.second].geometry->shape();
+    if (first.kind() == ShapeKind::Halfspace)
+        return scene.worldFromBody(p.first, poses.data()).rotation * first.normal();
+    if (second.kind() == ShapeKind::Halfspace)
+        return -(scene.worldFromBody(p.second, poses.data()).rotation * second.normal());
+    const Vec3 line = onSecond - onFirst;
+    const double length = line.norm();
+    return length > 0.0 && std::isfinite(length) ? Vec3(line / length) : Vec3::Zero();
 }
 
 bool validPoses(const std::vector<RigidTransform> &poses, std::size_t count)
@@ -79,8 +109,8 @@ bool translationContact(const Scene &scene, std::size_t pair, const std::vector<
 }
 }  // namespace
 
-void interpolateScenePoses(const std::vector<RigidTransform> &start, const std::vector<RigidTransform> &goal,
-                           double t, std::vector<RigidTransform> &out)
+void interpolateScenePoses(const std::vector<RigidTransform> &start, const std::vector<RigidTransform> &goal, double t,
+                           std::vector<RigidTransform> &out)
 {
     out.resize(start.size());
     for (std::size_t r = 0; r < start.size(); ++r)
@@ -113,15 +143,28 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
     std::vector<RobotSweep> sweeps(robots);
     for (std::size_t r = 0; r < robots; ++r)
     {
-        sweeps[r].translation = (goal[r].translation - start[r].translation).norm();
+        sweeps[r].displacement = goal[r].translation - start[r].translation;
+        sweeps[r].translation = sweeps[r].displacement.norm();
         sweeps[r].rotates = !(start[r].rotation == goal[r].rotation);
         sweeps[r].angle = sweeps[r].rotates ? rotationAngle(start[r].rotation, goal[r].rotation) : 0.0;
     }
 
-    // The earliest contact found so far: later pairs need only be advanced up to it.
+    // The earliest contact found so far: later pairs need only be advanced up to it. Every pair
+    // that touches also bounds the last valid time, whichever touches first.
     double horizon = 1.0;
     bool found = false;
+    result.lastValidTime = 1.0;
     std::vector<RigidTransform> poses;
+    auto touches = [&](std::size_t pair, double contactTime, double lastValid) {
+        result.lastValidTime = std::min(result.lastValidTime, std::max(0.0, std::min(lastValid, contactTime)));
+        if (!found || contactTime < horizon)
+        {
+            found = true;
+            horizon = contactTime;
+            result.pair = pair;
+            result.contactTime = contactTime;
+        }
+    };
     for (std::size_t pair = 0; pair < scene.pairs().size(); ++pair)
     {
         const ScenePair &p = scene.pairs()[pair];
@@ -129,17 +172,14 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
         if (options.translationLp && translationContact(scene, pair, start, goal, sweeps, lpTime))
         {
             ++result.lpPairs;
-            if (lpTime <= 1.0 && (!found || lpTime < horizon))
+            if (lpTime <= 1.0)
             {
-                found = true;
-                horizon = lpTime;
-                result.pair = pair;
-                result.contactTime = lpTime;
                 // The bodies touch at lpTime: the last valid time is just before, once checked.
-                result.lastValidTime = std::max(0.0, lpTime - 1e-9);
-                interpolateScenePoses(start, goal, result.lastValidTime, poses);
+                double lastValid = std::max(0.0, lpTime - 1e-9);
+                interpolateScenePoses(start, goal, lastValid, poses);
                 if (scene.pairCollides(pair, poses.data(), context))
-                    result.lastValidTime = 0.0;
+                    lastValid = 0.0;
+                touches(pair, lpTime, lastValid);
             }
             continue;
         }
@@ -147,8 +187,9 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
         // safeUntil: up to when the pair is known to stay `validMargin` apart, a margin the narrow
         // phase certifies with room to spare (its undecided band, near touching, is far thinner),
         // so that the state reported as last valid is checked free, not merely near.
-        double t = 0.0, safeUntil = 0.0;
-        for (std::size_t step = 0;; ++step)
+        double t = 0.0, safeUntil = 0.0, lastStep = 0.0;
+        std::size_t distanceSteps = 0;
+        for (;;)
         {
             if (found && t >= horizon)
                 break;  // another pair already touches earlier
@@ -167,26 +208,68 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
                 t += gap / speed;
                 continue;
             }
-            ++result.distanceQueries;
-            const double distance = scene.pairDistance(pair, poses.data(), context);
-            const double clearance = distance - tolerance;
-            if (clearance <= 0.0 || step >= options.maxStepsPerPair)
+            // Advancement slows down without end when the bodies close in at a grazing angle: every
+            // 16 steps, probe ahead at growing strides for a state that already touches, which
+            // settles the verdict at once.
+            if (++distanceSteps % 16 == 0 && lastStep > 0.0)
             {
-                if (!found || t < horizon)
+                bool hit = false;
+                for (double stride = 4.0 * lastStep; !hit && t + stride < std::min(1.0, horizon) + stride;
+                     stride *= 4.0)
                 {
-                    found = true;
-                    horizon = t;
-                    result.pair = pair;
-                    result.contactTime = t;
-                    result.lastValidTime = std::min(safeUntil, t);
+                    const double probe = std::min(1.0, t + stride);
+                    interpolateScenePoses(start, goal, probe, poses);
+                    if (scene.pairCollides(pair, poses.data(), context))
+                    {
+                        touches(pair, probe, std::min(safeUntil, t));
+                        hit = true;
+                    }
+                    if (probe >= 1.0)
+                        break;
                 }
+                if (hit)
+                    break;
+                interpolateScenePoses(start, goal, t, poses);
+            }
+            ++result.distanceQueries;
+            Vec3 onFirst = Vec3::Constant(std::numeric_limits<double>::quiet_NaN()), onSecond = onFirst;
+            const double distance = scene.pairDistance(pair, poses.data(), context, &onFirst, &onSecond);
+            const double clearance = distance - tolerance;
+            if (clearance <= 0.0 || distanceSteps >= options.maxStepsPerPair)
+            {
+                touches(pair, t, std::min(safeUntil, t));
                 break;
+            }
+            // Along a separating direction n the gap between the bodies' supports shrinks only as
+            // fast as their motions along n (plus turning), often far slower than the full speed
+            // bound: a robot sliding past an obstacle closes no gap at all (Mirtich's advancement).
+            double directionalStep = 0.0;
+            const Vec3 n = separatingDirection(scene, p, poses, onFirst, onSecond);
+            if (n != Vec3::Zero())
+            {
+                const RigidTransform first = scene.worldFromBody(p.first, poses.data()),
+                                     second = scene.worldFromBody(p.second, poses.data());
+                const double gapAlong =
+                    -scene.supportAlong(p.second, second, -n) - scene.supportAlong(p.first, first, n);
+                if (gapAlong > tolerance)
+                {
+                    const double closing =
+                        supportRate(scene, p.first, n, sweeps) + supportRate(scene, p.second, -n, sweeps);
+                    if (closing <= 0.0)
+                        break;  // the plane keeps them apart to the end
+                    directionalStep = (gapAlong - tolerance) / closing;
+                    if (gapAlong > validMargin)
+                        safeUntil = std::max(safeUntil, t + (gapAlong - validMargin) / closing);
+                    if (directionalStep >= 1.0 - t)
+                        break;
+                }
             }
             if (clearance >= remaining)
                 break;
             if (distance > validMargin)
                 safeUntil = std::max(safeUntil, t + (distance - validMargin) / speed);
-            t += clearance / speed;
+            lastStep = std::max(clearance / speed, directionalStep);
+            t += lastStep;
         }
     }
     result.valid = !found;

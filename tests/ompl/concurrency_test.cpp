@@ -8,8 +8,8 @@
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/ompl/scene_planning.h"
-#include "hybridcd/scene/problem_bodies.h"
 #include "hybridcd/query/checker_catalogue.h"
+#include "hybridcd/scene/problem_bodies.h"
 #ifdef HYBRIDCD_HAVE_FCL
 #include "hybridcd/fcl/fcl_checker.h"
 #endif
@@ -157,8 +157,8 @@ TEST(Concurrency, SceneAdaptersAnswerFromEightThreadsAsSerially)
         a.clearance = planning.validity->clearance(states[std::size_t(i)].get());
         ob::ScopedState<> last(si->getStateSpace());
         std::pair<ob::State *, double> lastValid{last.get(), -1.0};
-        a.motionFree = planning.motion->checkMotion(states[std::size_t(i)].get(), states[std::size_t(i) + 1].get(),
-                                                    lastValid);
+        a.motionFree =
+            planning.motion->checkMotion(states[std::size_t(i)].get(), states[std::size_t(i) + 1].get(), lastValid);
         a.lastValid = a.motionFree ? 1.0 : lastValid.second;
         return a;
     };

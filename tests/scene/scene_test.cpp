@@ -116,10 +116,10 @@ TEST(Scene, CoherentStreamsKeepTheBroadPhaseExact)
         for (RigidTransform &pose : poses)
         {
             pose.translation += Vec3(step(rng), step(rng), step(rng));
-            pose.rotation = (RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(step(rng), step(rng), step(rng)), 0.05)
-                                 .rotation *
-                             pose.rotation)
-                                .eval();
+            pose.rotation =
+                (RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(step(rng), step(rng), step(rng)), 0.05).rotation *
+                 pose.rotation)
+                    .eval();
         }
         const bool hit = slow->collides(poses, slowContext);
         ASSERT_EQ(fast->collides(poses, fastContext), hit) << "step " << i;
@@ -210,8 +210,8 @@ TEST(SceneMotion, NeverAcceptsAMotionThatDenseSamplingFindsColliding)
         if (!sampled.valid)
         {
             ASSERT_FALSE(exact.valid) << "motion " << i << " touches at t = " << sampled.contactTime;
-            // The first contact cannot come after the first sample that collides.
-            ASSERT_LE(exact.contactTime, sampled.contactTime + 1e-12) << "motion " << i;
+            // Everything before the last valid time is free, so it cannot come after a sample that collides.
+            ASSERT_LE(exact.lastValidTime, sampled.contactTime + 1e-12) << "motion " << i;
         }
         if (!exact.valid)
         {
@@ -343,14 +343,14 @@ const char *kHead = "[problem]\nrobot = r.obj\nstart.x = 0\nstart.y = 0\ngoal.x 
 
 TEST(SceneConfig, ReadsRobotsObstaclesAndAllowedPairs)
 {
-    const ProblemConfig cfg = parseProblemConfig(std::string(kHead) +
-                                                     "robot.2 = capsule 0.5 2\nstart.2.x = 3\nstart.2.y = 4\n"
-                                                     "start.2.theta = 1\ngoal.2.x = 5\ngoal.2.y = 6\n"
-                                                     "obstacle.1 = box 1 2 3\nobstacle.1.x = 7\n"
-                                                     "obstacle.2 = convex hull.obj\n"
-                                                     "obstacle.3 = halfspace 0 1 0 -2\n"
-                                                     "allowed_collisions = robot.2 obstacle.1; robot obstacle.3\n",
-                                                 "/tmp/scene.cfg");
+    const ProblemConfig cfg =
+        parseProblemConfig(std::string(kHead) + "robot.2 = capsule 0.5 2\nstart.2.x = 3\nstart.2.y = 4\n"
+                                                "start.2.theta = 1\ngoal.2.x = 5\ngoal.2.y = 6\n"
+                                                "obstacle.1 = box 1 2 3\nobstacle.1.x = 7\n"
+                                                "obstacle.2 = convex hull.obj\n"
+                                                "obstacle.3 = halfspace 0 1 0 -2\n"
+                                                "allowed_collisions = robot.2 obstacle.1; robot obstacle.3\n",
+                           "/tmp/scene.cfg");
     EXPECT_TRUE(cfg.isScene());
     EXPECT_TRUE(cfg.warnings.empty());
     ASSERT_EQ(cfg.extraRobots.size(), 1u);

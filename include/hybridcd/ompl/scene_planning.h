@@ -27,8 +27,7 @@ ompl::base::StateSpacePtr makeSceneStateSpace(const LoadedProblem &problem, cons
 void scenePosesOfState(const ompl::base::State *state, bool planar, std::size_t robots,
                        std::vector<RigidTransform> &out);
 /// Writes robot r's pose row (x y theta, or x y z qx qy qz qw) into the compound state.
-void sceneStateFromRows(const std::vector<double> &rows, bool planar, std::size_t robots,
-                        ompl::base::State *state);
+void sceneStateFromRows(const std::vector<double> &rows, bool planar, std::size_t robots, ompl::base::State *state);
 /// The rows of every robot of a compound state, robot 1 first (a .path line).
 std::vector<double> sceneRowsOfState(const ompl::base::State *state, bool planar, std::size_t robots);
 
@@ -61,8 +60,8 @@ private:
 class SceneMotionValidator : public ompl::base::MotionValidator
 {
 public:
-    SceneMotionValidator(const ompl::base::SpaceInformationPtr &si, std::shared_ptr<const SceneValidityChecker> validity,
-                         SceneMotionOptions options = {});
+    SceneMotionValidator(const ompl::base::SpaceInformationPtr &si,
+                         std::shared_ptr<const SceneValidityChecker> validity, SceneMotionOptions options = {});
 
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const override;
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,

@@ -13,8 +13,7 @@ namespace hcd
 /// The shape a .cfg names (ShapeSpec), with `mesh` the loaded mesh for "mesh" and "convex" specs.
 /// Dimensions are converted from the file's (side lengths, full lengths) to the shape's (half
 /// extents, half lengths). Throws InputError("FILE:LINE: ...") for a shape that cannot be built.
-Shape shapeOfSpec(const ShapeSpec &spec, const std::shared_ptr<const TriangleMesh> &mesh,
-                  const std::string &cfgPath);
+Shape shapeOfSpec(const ShapeSpec &spec, const std::shared_ptr<const TriangleMesh> &mesh, const std::string &cfgPath);
 
 /// Every body of `problem`: robot 1 (robot mesh), robot.K, the world mesh as the static body
 /// "world" (when given) and every obstacle.K at its pose; allowed pairs from allowed_collisions.

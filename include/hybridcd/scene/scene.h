@@ -39,10 +39,10 @@ namespace hcd
 /// One body of a scene.
 struct SceneBody
 {
-    std::string label;                               ///< e.g. "world", "obstacle.2", "robot.3"
-    std::shared_ptr<const BodyGeometry> geometry;    ///< never null
-    int robot = -1;                                  ///< index of the robot carrying it; -1: static
-    RigidTransform ownerFromBody = RigidTransform(); ///< world-from-body (static) or robot-from-body
+    std::string label;                                ///< e.g. "world", "obstacle.2", "robot.3"
+    std::shared_ptr<const BodyGeometry> geometry;     ///< never null
+    int robot = -1;                                   ///< index of the robot carrying it; -1: static
+    RigidTransform ownerFromBody = RigidTransform();  ///< world-from-body (static) or robot-from-body
 };
 
 /// How a scene checks its pairs.
@@ -112,7 +112,19 @@ public:
     bool pairCollides(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context) const;
     /// Distance of pair `pair` at these poses: 0 when touching, otherwise the distance between the
     /// bodies (floating point, never above the true distance by more than a relative 1e-9).
-    double pairDistance(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context) const;
+    double pairDistance(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context) const
+    {
+        return pairDistance(pair, worldFromRobot, context, nullptr, nullptr);
+    }
+    /// The same, also giving the closest points (world frame) on the pair's first and second body
+    /// when the narrow phase yields them (pairs with a shape); left unchanged otherwise (mesh pairs).
+    double pairDistance(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context, Vec3 *onFirst,
+                        Vec3 *onSecond) const;
+    /// max over the body of direction . x (world frame, `direction` unit), the body placed by
+    /// `worldFromBody`; up to a relative 1e-12 above the exact value (never below). Infinite when
+    /// unbounded (a half-space in any direction but its normal) or too costly (meshes of more than
+    /// 4096 vertices).
+    double supportAlong(std::size_t body, const RigidTransform &worldFromBody, const Vec3 &direction) const;
     /// A cheap lower bound on pairDistance: the gap between the bodies' world boxes.
     double pairBoundsGap(std::size_t pair, const RigidTransform *worldFromRobot) const;
     /// The smallest pairDistance over every checked pair (infinity when there are none).

@@ -16,6 +16,10 @@
 // on the distance that costs next to nothing, and computes the exact distance only when the boxes
 // alone cannot carry the pair to the end of the motion.
 //
+// Grazing approaches. Where the bodies close in at a shallow angle, each step covers only a little
+// of the remaining gap and advancement would crawl: every 16 steps of a pair, states ahead at
+// growing strides are checked exactly, and one that touches settles the verdict at once.
+//
 // Touching and near-touching. A pair whose distance falls to `contactTolerance` (default 1e-9 of
 // the scene's size) counts as touching: a motion that passes that close to contact is rejected,
 // never accepted, so the answer errs only towards collision, and only for motions within that
@@ -36,10 +40,12 @@ namespace hcd
 /// What checkMotion found.
 struct SceneMotionResult
 {
-    bool valid = true;          ///< no checked pair touches at any t in [0, 1]
-    double lastValidTime = 1.0; ///< when invalid: a time before which every pair stays apart
-    double contactTime = 1.0;   ///< when invalid: the first contact found (within the tolerance)
-    std::size_t pair = 0;       ///< when invalid: the pair (index into Scene::pairs()) that touched
+    bool valid = true;                ///< no checked pair touches at any t in [0, 1]
+    double lastValidTime = 1.0;       ///< when invalid: every pair stays apart on [0, lastValidTime]
+    double contactTime = 1.0;         ///< when invalid: a time at which `pair` touches (or comes within the
+                                      ///< tolerance); the earliest such time found, not always the first
+                                      ///< contact (a probe ahead may find a later one)
+    std::size_t pair = 0;             ///< when invalid: the pair (index into Scene::pairs()) that touched
     std::size_t distanceQueries = 0;  ///< exact distance queries made
     std::size_t boundSteps = 0;       ///< steps carried by the boxes' gap alone
     std::size_t lpPairs = 0;          ///< pairs decided by the time-augmented LP
@@ -52,14 +58,15 @@ struct SceneMotionOptions
     double contactTolerance = 0.0;
     /// Use the time-augmented LP for pairs of translating polytopes (otherwise they are advanced).
     bool translationLp = true;
-    /// Give up advancing a pair after this many steps and report it as touching (never as free).
-    std::size_t maxStepsPerPair = 100000;
+    /// Give up advancing a pair after this many distance steps and report it as touching (never as
+    /// free): only motions that pass within a hair of contact without touching take that many.
+    std::size_t maxStepsPerPair = 5000;
 };
 
 /// The robots' poses at time t of the motion from `start` to `goal` (robotCount transforms each):
 /// positions linearly, rotations along the shortest arc, as OMPL's SE(2)/SE(3) interpolate.
-void interpolateScenePoses(const std::vector<RigidTransform> &start, const std::vector<RigidTransform> &goal,
-                           double t, std::vector<RigidTransform> &out);
+void interpolateScenePoses(const std::vector<RigidTransform> &start, const std::vector<RigidTransform> &goal, double t,
+                           std::vector<RigidTransform> &out);
 
 /// Checks the motion of every robot from start[r] to goal[r] at once (see the essay above). The
 /// start state is checked too. Thread-safe with a context per thread.
