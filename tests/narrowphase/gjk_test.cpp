@@ -128,11 +128,7 @@ TEST(Gjk, EveryPairAgreesWithTessellationReference)
                     if (!stopEarly && r.verdict == GjkVerdict::Separated)
                     {
                         // The bracket is narrow and the points are the shapes' (within rounding).
-                        // 1e-9 relative; pairs with a cone stall near 1e-8 where rounding stops GJK.
-                        const bool cone = ka == ShapeKind::Cone || kb == ShapeKind::Cone;
-                        EXPECT_LE(r.upperBound - r.lowerBound,
-                                  (cone ? 2e-8 : 1e-9) * r.upperBound + (cone ? 2e-8 : 1e-10))
-                            << where;
+                        EXPECT_LE(r.upperBound - r.lowerBound, 1e-9 * r.upperBound + 1e-10) << where;
                         EXPECT_NEAR((r.pointA - r.pointB).norm(), r.upperBound, 1e-9) << where;
                         // No two points of the inner tessellations are closer than the lower bound.
                         double sampled = std::numeric_limits<double>::infinity();

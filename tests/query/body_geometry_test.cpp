@@ -104,8 +104,7 @@ TEST(BodyGeometry, EveryNonMeshPairAgreesWithReference)
                     ASSERT_GT(hit.distance, 0.0) << where;
                     ASSERT_GT(dist.distance, 0.0) << where;
                     // The distance's points are the bodies' (within the outer tessellation).
-                    // (Pairs with a cone: GJK may stop with its bracket near 1e-7 relative.)
-                    EXPECT_NEAR((dist.pointA - dist.pointB).norm(), dist.distance, 2e-7 * dist.distance + 1e-9)
+                    EXPECT_NEAR((dist.pointA - dist.pointB).norm(), dist.distance, 1e-9 * dist.distance + 1e-10)
                         << where;
                 }
                 hits += ref == test::Reference::Intersecting;
@@ -378,11 +377,11 @@ TEST(BodyGeometry, ShapeAgainstMeshMatchesFlatLoopAndContainment)
                                                                 ShapePairQuery::Distance, scratch);
                         nearest = std::min(nearest, r.distance);
                     }
-                    // (Both are GJK's lower bounds for most kinds; cones: see gjk.h on stalls.)
-                    const double relative = kind == ShapeKind::Cone ? 1e-6 : 1e-9;
+                    // (Both are GJK's certified lower bounds, each within 1e-9 relative.)
+                    const double relative = 2e-9;
                     EXPECT_LE(d.distance, nearest * (1 + relative) + 1e-12) << where;
                     EXPECT_GT(d.distance, 0.0) << where;
-                    EXPECT_NEAR((d.pointA - d.pointB).norm(), d.distance, relative * 1e2 * d.distance + 1e-9) << where;
+                    EXPECT_NEAR((d.pointA - d.pointB).norm(), d.distance, 1e-9 * d.distance + 1e-10) << where;
                 }
                 hits += expected;
             }
