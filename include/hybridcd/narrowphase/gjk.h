@@ -94,7 +94,7 @@ enum class GjkVerdict
 {
     Separated,     ///< certified: lowerBound > 0 after the rounding margin
     Intersecting,  ///< the origin is in the simplex, or |v| is within the rounding margin
-    Undecided,     ///< neither within maxIterations: treat as intersecting
+    Undecided,     ///< neither, within maxIterations or before rounding stalled it: treat as intersecting
 };
 
 /// Outcome of gjkDistance; all points in world coordinates, lengths in world units.
