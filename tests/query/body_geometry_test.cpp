@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 namespace hcd
 {
@@ -502,6 +503,43 @@ TEST(BodyGeometry, TinyAndHugeScales)
         EXPECT_GT(hits, total / 5) << scale;
         EXPECT_LT(hits, 4 * total / 5) << scale;
     }
+}
+
+// Shared immutable geometry, one context per thread: the same answers as a serial run.
+TEST(BodyGeometry, ThreadsWithTheirOwnContextsAgreeWithSerial)
+{
+    TestRandom rng(test::seeded(38));
+    std::vector<BodyGeometry> bodies;
+    for (ShapeKind kind : test::compactKinds())
+        bodies.emplace_back(test::randomShape(kind, rng));
+    bodies.emplace_back(Shape::mesh(closedBox(0.8)));
+    bodies.emplace_back(Shape::halfspace(Vec3(0, 0, 1), 0.0));
+    const int n = cases(400);
+    std::vector<RigidTransform> poses;
+    for (int i = 0; i < 2 * n; ++i)
+        poses.push_back(test::randomPose(rng, 1.5));
+    auto answer = [&](int i, QueryContext &context) {
+        const BodyGeometry &a = bodies[static_cast<std::size_t>(i) % bodies.size()];
+        const BodyGeometry &b = bodies[static_cast<std::size_t>(i / 3) % (bodies.size() - 1)];
+        if (a.shape().kind() == ShapeKind::Mesh && b.shape().kind() == ShapeKind::Mesh)
+            return -1.0;
+        return bodiesDistance(a, poses[2 * i], b, poses[2 * i + 1], context).distance;
+    };
+    std::vector<double> serial(static_cast<std::size_t>(n)), parallel(static_cast<std::size_t>(n));
+    QueryContext context;
+    for (int i = 0; i < n; ++i)
+        serial[i] = answer(i, context);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            QueryContext own;
+            for (int i = t; i < n; i += 4)
+                parallel[i] = answer(i, own);
+        });
+    for (std::thread &thread : threads)
+        thread.join();
+    for (int i = 0; i < n; ++i)
+        ASSERT_NEAR(parallel[i], serial[i], 3e-9 * std::max(1.0, serial[i])) << i;  // warm starts differ
 }
 
 TEST(BodyGeometry, BoundsMeshPairsAndCounters)
