@@ -151,8 +151,8 @@ Shape Shape::halfspace(const Vec3 &normal, double offset)
         throw std::invalid_argument("Shape: half-space normal must be finite and non-zero, offset finite");
     Shape s;
     s.kind_ = ShapeKind::Halfspace;
-    s.extents_ = normal / length;
-    s.radius_ = offset / length;
+    s.normal_ = normal / length;
+    s.offset_ = offset / length;
     return s;
 }
 

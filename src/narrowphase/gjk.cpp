@@ -91,6 +91,23 @@ Closest closestOnTriangle(const Vec3 &a, const Vec3 &b, const Vec3 &c)
     const double sum = va + vb + vc;
     if (sum > 0.0 && std::isfinite(sum))
     {
+        // Face region: the origin's projection on the plane, from the normal (a cross product of
+        // edges keeps its relative accuracy on long thin triangles, where the region tests'
+        // products of dot products lose theirs), and the weights from sub-triangle areas.
+        const Vec3 n = ab.cross(ac);
+        const double nn = n.squaredNorm();
+        if (nn > 0.0)
+        {
+            const Vec3 p = n * (n.dot(a) / nn);
+            const double wa = (b - p).cross(c - p).dot(n) / nn, wb = (c - p).cross(a - p).dot(n) / nn;
+            const double wc = 1.0 - wa - wb;
+            if (wa >= 0.0 && wb >= 0.0 && wc >= 0.0)
+            {
+                r.point = p;
+                r.weight = {wa, wb, wc, 0.0};
+                return r;
+            }
+        }
         const double v = vb / sum, w = vc / sum;
         r.point = a + v * ab + w * ac;
         r.weight = {1.0 - v - w, v, w, 0.0};

@@ -258,6 +258,8 @@ BodyPairResult bodiesIntersect(const BodyGeometry &a, const RigidTransform &worl
     return bodyPair(a, worldFromA, b, worldFromB, Mode::Intersect, context);
 }
 
+const ShapePairScratch &bodyQueryCounters(QueryContext &context) { return context.scratch<BodyScratch>().pair; }
+
 BodyPairResult bodiesDistance(const BodyGeometry &a, const RigidTransform &worldFromA, const BodyGeometry &b,
                               const RigidTransform &worldFromB, QueryContext &context)
 {

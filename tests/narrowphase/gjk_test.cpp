@@ -93,6 +93,7 @@ TEST(Gjk, EveryPairAgreesWithTessellationReference)
     TestRandom rng(test::seeded(13));
     LpWorkspace lp;
     const auto &kinds = test::compactKinds();
+    int allHits = 0, allKnown = 0;
     for (ShapeKind ka : kinds)
         for (ShapeKind kb : kinds)
         {
@@ -127,11 +128,7 @@ TEST(Gjk, EveryPairAgreesWithTessellationReference)
                     if (!stopEarly && r.verdict == GjkVerdict::Separated)
                     {
                         // The bracket is narrow and the points are the shapes' (within rounding).
-                        // 1e-9 relative; pairs with a cone stall near 1e-8 where rounding stops GJK.
-                        const bool cone = ka == ShapeKind::Cone || kb == ShapeKind::Cone;
-                        EXPECT_LE(r.upperBound - r.lowerBound,
-                                  (cone ? 2e-8 : 1e-9) * r.upperBound + (cone ? 2e-8 : 1e-10))
-                            << where;
+                        EXPECT_LE(r.upperBound - r.lowerBound, 1e-9 * r.upperBound + 1e-10) << where;
                         EXPECT_NEAR((r.pointA - r.pointB).norm(), r.upperBound, 1e-9) << where;
                         // No two points of the inner tessellations are closer than the lower bound.
                         double sampled = std::numeric_limits<double>::infinity();
@@ -148,10 +145,17 @@ TEST(Gjk, EveryPairAgreesWithTessellationReference)
             const std::string pair = std::string(shapeKindName(ka)) + "-" + shapeKindName(kb);
             // Informative generator: both verdicts common (one random shape per kind pair, so
             // the rate varies more than it would over many shapes).
-            EXPECT_GE(hits, 15 * known / 100) << pair;
-            EXPECT_LE(hits, 85 * known / 100) << pair;
-            EXPECT_LE(unknown, n / 5) << pair;
+            if (n >= 50)  // per pair only with enough cases (sanitizer builds run fewer)
+            {
+                EXPECT_GE(hits, 15 * known / 100) << pair;
+                EXPECT_LE(hits, 85 * known / 100) << pair;
+            }
+            EXPECT_LE(unknown, n / 5 + 1) << pair;
+            allHits += hits;
+            allKnown += known;
         }
+    EXPECT_GE(allHits, 30 * allKnown / 100);
+    EXPECT_LE(allHits, 70 * allKnown / 100);
 }
 
 TEST(Gjk, ExactContactIsIntersecting)

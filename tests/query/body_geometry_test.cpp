@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 namespace hcd
 {
@@ -104,8 +105,7 @@ TEST(BodyGeometry, EveryNonMeshPairAgreesWithReference)
                     ASSERT_GT(hit.distance, 0.0) << where;
                     ASSERT_GT(dist.distance, 0.0) << where;
                     // The distance's points are the bodies' (within the outer tessellation).
-                    // (Pairs with a cone: GJK may stop with its bracket near 1e-7 relative.)
-                    EXPECT_NEAR((dist.pointA - dist.pointB).norm(), dist.distance, 2e-7 * dist.distance + 1e-9)
+                    EXPECT_NEAR((dist.pointA - dist.pointB).norm(), dist.distance, 1e-9 * dist.distance + 1e-10)
                         << where;
                 }
                 hits += ref == test::Reference::Intersecting;
@@ -113,7 +113,8 @@ TEST(BodyGeometry, EveryNonMeshPairAgreesWithReference)
             }
             const std::string pair = std::string(shapeKindName(ka)) + "-" + shapeKindName(kb);
             EXPECT_GE(known, 8 * n / 10) << pair;
-            if (!(ka == ShapeKind::Halfspace && kb == ShapeKind::Halfspace))  // two random planes always meet
+            // Per pair only with enough cases (sanitizer builds run fewer); random planes always meet.
+            if (n >= 50 && !(ka == ShapeKind::Halfspace && kb == ShapeKind::Halfspace))
             {
                 EXPECT_GE(hits, 10 * known / 100) << pair;
                 EXPECT_LE(hits, 90 * known / 100) << pair;
@@ -377,11 +378,11 @@ TEST(BodyGeometry, ShapeAgainstMeshMatchesFlatLoopAndContainment)
                                                                 ShapePairQuery::Distance, scratch);
                         nearest = std::min(nearest, r.distance);
                     }
-                    // (Both are GJK's lower bounds for most kinds; cones: see gjk.h on stalls.)
-                    const double relative = kind == ShapeKind::Cone ? 1e-6 : 1e-9;
+                    // (Both are GJK's certified lower bounds, each within 1e-9 relative.)
+                    const double relative = 2e-9;
                     EXPECT_LE(d.distance, nearest * (1 + relative) + 1e-12) << where;
                     EXPECT_GT(d.distance, 0.0) << where;
-                    EXPECT_NEAR((d.pointA - d.pointB).norm(), d.distance, relative * 1e2 * d.distance + 1e-9) << where;
+                    EXPECT_NEAR((d.pointA - d.pointB).norm(), d.distance, 1e-9 * d.distance + 1e-10) << where;
                 }
                 hits += expected;
             }
@@ -473,13 +474,15 @@ TEST(BodyGeometry, TinyAndHugeScales)
     QueryContext context;
     LpWorkspace lp;
     for (double scale : {1e-6, 1e6})
+    {
+        int hits = 0, total = 0;
         for (ShapeKind ka : {ShapeKind::Box, ShapeKind::Cylinder, ShapeKind::Ellipsoid})
             for (ShapeKind kb : {ShapeKind::Convex, ShapeKind::Cone, ShapeKind::Capsule})
             {
                 const Shape a = test::randomShape(ka, rng, scale), b = test::randomShape(kb, rng, scale);
                 const test::ShapeHulls ha = test::hullsOf(a, 6), hb = test::hullsOf(b, 6);
-                int hits = 0;
                 const int n = cases(60);
+                total += n;
                 for (int i = 0; i < n; ++i)
                 {
                     const RigidTransform wa = test::randomPose(rng, 0.1 * scale),
@@ -496,9 +499,47 @@ TEST(BodyGeometry, TinyAndHugeScales)
                     }
                     hits += ref == test::Reference::Intersecting;
                 }
-                EXPECT_GT(hits, 0) << scale;
-                EXPECT_LT(hits, n) << scale;
             }
+        EXPECT_GT(hits, total / 5) << scale;
+        EXPECT_LT(hits, 4 * total / 5) << scale;
+    }
+}
+
+// Shared immutable geometry, one context per thread: the same answers as a serial run.
+TEST(BodyGeometry, ThreadsWithTheirOwnContextsAgreeWithSerial)
+{
+    TestRandom rng(test::seeded(38));
+    std::vector<BodyGeometry> bodies;
+    for (ShapeKind kind : test::compactKinds())
+        bodies.emplace_back(test::randomShape(kind, rng));
+    bodies.emplace_back(Shape::mesh(closedBox(0.8)));
+    bodies.emplace_back(Shape::halfspace(Vec3(0, 0, 1), 0.0));
+    const int n = cases(400);
+    std::vector<RigidTransform> poses;
+    for (int i = 0; i < 2 * n; ++i)
+        poses.push_back(test::randomPose(rng, 1.5));
+    auto answer = [&](int i, QueryContext &context) {
+        const BodyGeometry &a = bodies[static_cast<std::size_t>(i) % bodies.size()];
+        const BodyGeometry &b = bodies[static_cast<std::size_t>(i / 3) % (bodies.size() - 1)];
+        if (a.shape().kind() == ShapeKind::Mesh && b.shape().kind() == ShapeKind::Mesh)
+            return -1.0;
+        return bodiesDistance(a, poses[2 * i], b, poses[2 * i + 1], context).distance;
+    };
+    std::vector<double> serial(static_cast<std::size_t>(n)), parallel(static_cast<std::size_t>(n));
+    QueryContext context;
+    for (int i = 0; i < n; ++i)
+        serial[i] = answer(i, context);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            QueryContext own;
+            for (int i = t; i < n; i += 4)
+                parallel[i] = answer(i, own);
+        });
+    for (std::thread &thread : threads)
+        thread.join();
+    for (int i = 0; i < n; ++i)
+        ASSERT_NEAR(parallel[i], serial[i], 3e-9 * std::max(1.0, serial[i])) << i;  // warm starts differ
 }
 
 TEST(BodyGeometry, BoundsMeshPairsAndCounters)
@@ -527,6 +568,12 @@ TEST(BodyGeometry, BoundsMeshPairsAndCounters)
                 ASSERT_TRUE(box.contains(pose.apply(p))) << shapeKindName(kind);
         }
     }
+    // Curved pairs go through GJK and are counted; nothing here is undecided.
+    bodiesDistance(BodyGeometry(Shape::cone(0.3, 0.4)), at(Vec3(2, 0, 0)), BodyGeometry(Shape::cylinder(0.2, 0.5)),
+                   RigidTransform::identity(), context);
+    EXPECT_GT(bodyQueryCounters(context).gjkQueries, 0u);
+    EXPECT_GT(bodyQueryCounters(context).gjkIterations, 0u);
+    EXPECT_EQ(bodyQueryCounters(context).undecided, 0u);
     const std::uint64_t before = context.stats.primitiveTests;
     bodiesIntersect(BodyGeometry(Shape::sphere(0.3)), at(Vec3(0.9, 0, 0)), mesh, RigidTransform::identity(), context);
     EXPECT_GT(context.stats.primitiveTests, before);

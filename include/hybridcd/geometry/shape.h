@@ -75,9 +75,9 @@ public:
     /// Box half-extents or ellipsoid semi-axes. Zero for other kinds.
     const Vec3 &extents() const { return extents_; }
     /// Half-space unit normal (zero for other kinds).
-    const Vec3 &normal() const { return extents_; }
-    /// Half-space offset: the set is {x : normal() . x <= offset()}.
-    double offset() const { return radius_; }
+    const Vec3 &normal() const { return normal_; }
+    /// Half-space offset: the set is {x : normal() . x <= offset()}. 0 for other kinds.
+    double offset() const { return offset_; }
     /// The convex kind's points (empty for other kinds).
     const std::vector<Vec3> &points() const;
     /// The mesh kind's mesh (null for other kinds).
@@ -92,6 +92,8 @@ private:
     double radius_ = 0.0;
     double halfLength_ = 0.0;
     Vec3 extents_ = Vec3::Zero();
+    Vec3 normal_ = Vec3::Zero();
+    double offset_ = 0.0;
     std::shared_ptr<const std::vector<Vec3>> points_;
     std::shared_ptr<const TriangleMesh> mesh_;
 };

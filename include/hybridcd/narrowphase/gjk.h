@@ -20,6 +20,13 @@
 // iteration limit reached without either, is "Undecided", which callers treat as intersecting: a
 // colliding pair is never reported free.
 //
+// Numerics. Spheres and capsules run as their cores (a point, a segment) inflated by their radii,
+// so that GJK terminates on them as on polytopes. On curved surfaces the simplex's points bunch
+// together: the face region's closest point is taken by projection on the triangle's normal
+// (accurate on long thin triangles), a tetrahedron flatter than 1e-9 of its longest edge cubed
+// never proves containment, and when rounding stops |v| from decreasing the simplex collapses to
+// the segment from v to the newest support point (up to 200 times) before the query gives up.
+//
 // Warm start (review §4.3-4.6): the caller keeps a GjkWarmStart per pair of bodies and passes it
 // to the next query; the last direction v seeds the first support point, so that coherent queries
 // (successive states of a motion) start next to the answer.
@@ -87,7 +94,7 @@ enum class GjkVerdict
 {
     Separated,     ///< certified: lowerBound > 0 after the rounding margin
     Intersecting,  ///< the origin is in the simplex, or |v| is within the rounding margin
-    Undecided,     ///< neither within maxIterations: treat as intersecting
+    Undecided,     ///< neither, within maxIterations or before rounding stalled it: treat as intersecting
 };
 
 /// Outcome of gjkDistance; all points in world coordinates, lengths in world units.

@@ -20,6 +20,7 @@
 #include "hybridcd/bv/aabb.h"
 #include "hybridcd/geometry/rigid_transform.h"
 #include "hybridcd/geometry/shape.h"
+#include "hybridcd/narrowphase/shape_pair.h"
 #include "hybridcd/query/query_context.h"
 
 #include <memory>
@@ -77,4 +78,9 @@ BodyPairResult bodiesIntersect(const BodyGeometry &a, const RigidTransform &worl
 /// Mesh-Mesh pairs throw std::invalid_argument.
 BodyPairResult bodiesDistance(const BodyGeometry &a, const RigidTransform &worldFromA, const BodyGeometry &b,
                               const RigidTransform &worldFromB, QueryContext &context);
+
+/// The narrow-phase scratch and counters of the body queries made with `context`: GJK queries
+/// and iterations, GJK answers left undecided (reported intersecting) and polytope pairs settled
+/// by the LP. Counters only grow; read them between queries.
+const ShapePairScratch &bodyQueryCounters(QueryContext &context);
 }  // namespace hcd
