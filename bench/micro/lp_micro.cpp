@@ -9,8 +9,10 @@
 // fraction of answers that fell back to the slack LP.
 //
 //   build/bench/hybridcd_bench_lp_micro --benchmark_format=json > lp_micro.json
+#include "hybridcd/geometry/shape.h"
 #include "hybridcd/narrowphase/convex_piece.h"
 #include "hybridcd/narrowphase/dual_lp.h"
+#include "hybridcd/narrowphase/gjk.h"
 #include "hybridcd/narrowphase/linear_program.h"
 
 #include <benchmark/benchmark.h>
@@ -134,3 +136,29 @@ BENCHMARK(BM_DualSimplex)->Arg(8)->Arg(20)->Arg(60);
 void BM_DualSimplexReviewObjective(benchmark::State &state) { dualLp(state, kDualLpReviewObjective); }
 BENCHMARK(BM_DualSimplexReviewObjective)->Arg(8)->Arg(20)->Arg(60);
 }  // namespace
+
+// GJK on the same pieces as convex shapes (support points by a scan of the vertices): the review's
+// §4.6 against its LPs. A fresh warm start per pair, as a first query of a pair would have.
+void BM_GjkIntersect(benchmark::State &state)
+{
+    const auto &pairs = piecePairs(int(state.range(0)));
+    std::vector<std::pair<Shape, Shape>> shapes;
+    for (const auto &p : pairs)
+        shapes.emplace_back(Shape::convex(p.first.vertices), Shape::convex(p.second.vertices));
+    GjkRequest request;
+    request.stopWhenSeparated = true;
+    std::size_t i = 0, hits = 0, iterations = 0;
+    for (auto _ : state)
+    {
+        const auto &p = shapes[i % shapes.size()];
+        GjkWarmStart warm;
+        const GjkResult result = gjkDistance(GjkBody::placed(p.first, RigidTransform()),
+                                             GjkBody::placed(p.second, RigidTransform()), request, warm);
+        hits += result.intersecting() ? 1 : 0;
+        iterations += std::size_t(result.iterations);
+        ++i;
+    }
+    state.counters["hit fraction"] = double(hits) / double(i);
+    state.counters["iterations"] = double(iterations) / double(i);
+}
+BENCHMARK(BM_GjkIntersect)->Arg(8)->Arg(20)->Arg(60);
