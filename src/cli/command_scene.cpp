@@ -137,8 +137,10 @@ int runSceneCheckMotion(const LoadedProblem &problem, const std::string &motions
     const auto start = Clock::now();
     for (const auto &[from, to] : motions)
     {
-        const SceneMotionResult result =
-            checkSceneMotion(*scene, posesOfLine(from.values, config), posesOfLine(to.values, config), context);
+        SceneMotionOptions motionOptions;
+        motionOptions.verdictOnly = verdictOnly;
+        const SceneMotionResult result = checkSceneMotion(*scene, posesOfLine(from.values, config),
+                                                          posesOfLine(to.values, config), context, motionOptions);
         lpPairs += result.lpPairs;
         distances += result.distanceQueries;
         if (result.valid)

@@ -161,14 +161,16 @@ SceneMotionValidator::SceneMotionValidator(const ob::SpaceInformationPtr &si,
 {
 }
 
-SceneMotionResult SceneMotionValidator::check(const ob::State *s1, const ob::State *s2) const
+SceneMotionResult SceneMotionValidator::check(const ob::State *s1, const ob::State *s2, bool verdictOnly) const
 {
     const Scene &scene = validity_->scene();
     std::vector<RigidTransform> start, goal;
     scenePosesOfState(s1, validity_->planar(), scene.robotCount(), start);
     scenePosesOfState(s2, validity_->planar(), scene.robotCount(), goal);
     auto context = validity_->contexts().borrow();
-    return checkSceneMotion(scene, start, goal, *context, options_);
+    SceneMotionOptions options = options_;
+    options.verdictOnly = verdictOnly;
+    return checkSceneMotion(scene, start, goal, *context, options);
 }
 
 bool SceneMotionValidator::checkMotion(const ob::State *s1, const ob::State *s2) const
@@ -179,7 +181,7 @@ bool SceneMotionValidator::checkMotion(const ob::State *s1, const ob::State *s2)
         invalid_++;
         return false;
     }
-    const bool valid = check(s1, s2).valid;
+    const bool valid = check(s1, s2, true).valid;
     valid ? valid_++ : invalid_++;
     return valid;
 }

@@ -155,7 +155,33 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
     bool found = false;
     result.lastValidTime = 1.0;
     std::vector<RigidTransform> poses;
+    // Raked states: 1, 1/2, 1/4, 3/4, 1/8, 3/8, 5/8, 7/8.
+    double rakedHit = 2.0;
+    for (const double t : {1.0, 0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875})
+    {
+        interpolateScenePoses(start, goal, t, poses);
+        if (scene.collides(poses, context))
+        {
+            rakedHit = t;
+            break;
+        }
+    }
+    if (rakedHit <= 1.0)
+    {
+        if (options.verdictOnly)
+        {
+            result.valid = false;
+            result.lastValidTime = 0.0;
+            result.contactTime = rakedHit;
+            return result;
+        }
+        found = true;
+        horizon = rakedHit;
+        result.contactTime = rakedHit;
+    }
+    bool touched = false;
     auto touches = [&](std::size_t pair, double contactTime, double lastValid) {
+        touched = true;
         result.lastValidTime = std::min(result.lastValidTime, std::max(0.0, std::min(lastValid, contactTime)));
         if (!found || contactTime < horizon)
         {
@@ -272,6 +298,10 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
             t += lastStep;
         }
     }
+    // A raked state collides, yet no pair was seen touching before it (possible only when the
+    // narrow phase and the distances disagree within rounding): keep the start as last valid.
+    if (found && !touched)
+        result.lastValidTime = 0.0;
     result.valid = !found;
     if (result.valid)
         result.lastValidTime = result.contactTime = 1.0;

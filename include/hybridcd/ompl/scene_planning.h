@@ -67,8 +67,9 @@ public:
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
 
-    /// The full answer for one motion (no OMPL counters touched).
-    SceneMotionResult check(const ompl::base::State *s1, const ompl::base::State *s2) const;
+    /// The full answer for one motion (no OMPL counters touched); `verdictOnly` as in
+    /// SceneMotionOptions (the two-state checkMotion uses it).
+    SceneMotionResult check(const ompl::base::State *s1, const ompl::base::State *s2, bool verdictOnly = false) const;
 
 private:
     std::shared_ptr<const SceneValidityChecker> validity_;

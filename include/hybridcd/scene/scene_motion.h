@@ -16,6 +16,10 @@
 // on the distance that costs next to nothing, and computes the exact distance only when the boxes
 // alone cannot carry the pair to the end of the motion.
 //
+// Raked states first. Most motions a planner tries touch something; before any advancement the
+// states at t = 1, 1/2, 1/4, 3/4, 1/8, ... (8 of them) are checked exactly, as VAMP rakes a motion.
+// One that collides decides the verdict, and bounds how far pairs need advancing for lastValid.
+//
 // Grazing approaches. Where the bodies close in at a shallow angle, each step covers only a little
 // of the remaining gap and advancement would crawl: every 16 steps of a pair, states ahead at
 // growing strides are checked exactly, and one that touches settles the verdict at once.
@@ -58,6 +62,9 @@ struct SceneMotionOptions
     double contactTolerance = 0.0;
     /// Use the time-augmented LP for pairs of translating polytopes (otherwise they are advanced).
     bool translationLp = true;
+    /// The verdict alone (as a planner asks before extending along a motion): a raked state that
+    /// collides ends the check at once, and lastValidTime is then 0, not bracketed.
+    bool verdictOnly = false;
     /// Give up advancing a pair after this many distance steps and report it as touching (never as
     /// free): only motions that pass within a hair of contact without touching take that many.
     std::size_t maxStepsPerPair = 5000;
