@@ -233,6 +233,7 @@ int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<
         const std::size_t c = slotOf.at(planner.get());
         const unsigned local = runsSoFar[planner.get()]++;
         props["collision checks INTEGER"] = std::to_string(validity[c]->checkCount());
+        props["collision checking time REAL"] = std::to_string(validity[c]->checkSeconds());
         props["checker VARCHAR(32)"] = slots[c].checker;
         props["configuration VARCHAR(64)"] = slots[c].label;
         props["run index INTEGER"] = std::to_string(run.shardIndex + std::size_t(local) * run.shardCount);

@@ -102,7 +102,7 @@ ShapePairResult byGjk(const Shape &a, const RigidTransform &wa, const Shape &b, 
 ShapePairResult boxBox(const Shape &a, const RigidTransform &wa, const Shape &b, const RigidTransform &wb,
                        ShapePairQuery query, ShapePairScratch &scratch)
 {
-    if (query == ShapePairQuery::Distance)
+    if (query != ShapePairQuery::Intersection)
         return byGjk(a, wa, b, wb, query, scratch);
     const double margin = kMarginRelative * pairScale(a, wa, b, wb);
     const Vec3 t = wb.translation - wa.translation;
@@ -188,6 +188,8 @@ ShapePairResult gjkBodies(const GjkBody &ga, const GjkBody &gb, bool polytopes, 
 {
     GjkRequest request;
     request.stopWhenSeparated = query == ShapePairQuery::Intersection;
+    if (query == ShapePairQuery::DistanceBound)
+        request.relativeTolerance = 1e-2;
     const GjkResult g = gjkDistance(ga, gb, request, scratch.warmStart);
     ++scratch.gjkQueries;
     scratch.gjkIterations += static_cast<std::uint64_t>(g.iterations);

@@ -6,17 +6,65 @@
 #include "hybridcd/scene/problem_bodies.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ProjectionEvaluator.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace ob = ompl::base;
 
 namespace hcd
 {
+namespace
+{
+// The default projection of a scene's compound space, for planners that grid a projection (KPIECE
+// and its kin): robot 1's position, as OMPL's SE(2)/SE(3) spaces project one robot, with cells of
+// a twentieth of the bounds.
+class FirstRobotPosition : public ob::ProjectionEvaluator
+{
+public:
+    FirstRobotPosition(const ob::StateSpace *space, bool planar, const ob::RealVectorBounds &bounds)
+        : ob::ProjectionEvaluator(space),
+          planar_(planar),
+          bounds_(bounds)
+    {
+    }
+    unsigned int getDimension() const override { return planar_ ? 2u : 3u; }
+    void defaultCellSizes() override
+    {
+        cellSizes_.resize(getDimension());
+        for (unsigned i = 0; i < getDimension(); ++i)
+        {
+            const double extent = bounds_.high[i] - bounds_.low[i];
+            cellSizes_[i] = extent > 0.0 ? extent / 20.0 : 1.0;
+        }
+    }
+    void project(const ob::State *state, Eigen::Ref<Eigen::VectorXd> projection) const override
+    {
+        const ob::State *first = (*state->as<ob::CompoundState>())[0];
+        if (planar_)
+        {
+            const auto *s = first->as<ob::SE2StateSpace::StateType>();
+            projection(0) = s->getX();
+            projection(1) = s->getY();
+            return;
+        }
+        const auto *s = first->as<ob::SE3StateSpace::StateType>();
+        projection(0) = s->getX();
+        projection(1) = s->getY();
+        projection(2) = s->getZ();
+    }
+
+private:
+    bool planar_;
+    ob::RealVectorBounds bounds_;
+};
+}  // namespace
+
 ob::StateSpacePtr makeSceneStateSpace(const LoadedProblem &problem, const Scene &scene)
 {
     const ProblemConfig &cfg = problem.config;
@@ -92,6 +140,7 @@ ob::StateSpacePtr makeSceneStateSpace(const LoadedProblem &problem, const Scene 
         compound->addSubspace(space, 1.0);
     }
     compound->lock();
+    compound->registerDefaultProjection(std::make_shared<FirstRobotPosition>(compound.get(), cfg.planar, bounds));
     return compound;
 }
 
@@ -137,10 +186,16 @@ bool SceneValidityChecker::isValid(const ob::State *state) const
     if (!si_->satisfiesBounds(state))
         return false;
     checks_.fetch_add(1, std::memory_order_relaxed);
+    const auto start = std::chrono::steady_clock::now();
     auto context = contexts_.borrow();
     std::vector<RigidTransform> &poses = context->scratch<std::vector<RigidTransform>>();
     scenePosesOfState(state, planar_, scene_->robotCount(), poses);
-    return !scene_->collides(poses, *context);
+    const bool valid = !scene_->collides(poses, *context);
+    nanoseconds_.fetch_add(
+        std::uint64_t(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count()),
+        std::memory_order_relaxed);
+    return valid;
 }
 
 double SceneValidityChecker::clearance(const ob::State *state) const

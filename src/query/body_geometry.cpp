@@ -126,7 +126,15 @@ enum class Mode
 {
     Intersect,
     Distance,
+    DistanceBound,
 };
+
+ShapePairQuery queryOf(Mode mode)
+{
+    return mode == Mode::Intersect  ? ShapePairQuery::Intersection
+           : mode == Mode::Distance ? ShapePairQuery::Distance
+                                    : ShapePairQuery::DistanceBound;
+}
 
 // A mesh body (meshBody, placed by worldFromMesh) against a non-mesh shape (placed by
 // worldFromShape). Points: pointA on the shape, pointB on the mesh (world).
@@ -164,7 +172,7 @@ BodyPairResult shapeAgainstMesh(const Shape &shape, const RigidTransform &worldF
     }
 
     const BoundingBox shapeBox = hcd::worldBounds(shape, meshFromShape);
-    const ShapePairQuery query = mode == Mode::Distance ? ShapePairQuery::Distance : ShapePairQuery::Intersection;
+    const ShapePairQuery query = queryOf(mode);
     double best = kInfinity;
     std::vector<int> &stack = scratch.stack;
     stack.clear();
@@ -220,7 +228,7 @@ BodyPairResult shapeAgainstMesh(const Shape &shape, const RigidTransform &worldF
     }
     result.intersecting = false;
     // Intersect mode gives a positive lower bound only (every triangle test was a separation).
-    result.distance = mode == Mode::Distance ? best : std::numeric_limits<double>::min();
+    result.distance = mode != Mode::Intersect ? best : std::numeric_limits<double>::min();
     return result;
 }
 
@@ -240,9 +248,7 @@ BodyPairResult bodyPair(const BodyGeometry &a, const RigidTransform &worldFromA,
     }
     BodyScratch &scratch = context.scratch<BodyScratch>();
     ++context.stats.primitiveTests;
-    const ShapePairResult r =
-        shapePair(a.shape(), worldFromA, b.shape(), worldFromB,
-                  mode == Mode::Distance ? ShapePairQuery::Distance : ShapePairQuery::Intersection, scratch.pair);
+    const ShapePairResult r = shapePair(a.shape(), worldFromA, b.shape(), worldFromB, queryOf(mode), scratch.pair);
     BodyPairResult out;
     out.intersecting = r.intersecting;
     out.distance = r.distance;
@@ -264,5 +270,11 @@ BodyPairResult bodiesDistance(const BodyGeometry &a, const RigidTransform &world
                               const RigidTransform &worldFromB, QueryContext &context)
 {
     return bodyPair(a, worldFromA, b, worldFromB, Mode::Distance, context);
+}
+
+BodyPairResult bodiesDistanceBound(const BodyGeometry &a, const RigidTransform &worldFromA, const BodyGeometry &b,
+                                   const RigidTransform &worldFromB, QueryContext &context)
+{
+    return bodyPair(a, worldFromA, b, worldFromB, Mode::DistanceBound, context);
 }
 }  // namespace hcd

@@ -251,6 +251,22 @@ double Scene::pairDistance(std::size_t pair, const RigidTransform *worldFromRobo
     return result.distance;
 }
 
+double Scene::pairDistanceBound(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context,
+                                Vec3 *onFirst, Vec3 *onSecond) const
+{
+    const ScenePair &p = pairs_[pair];
+    if (meshCheckers_[pair])
+        return pairDistance(pair, worldFromRobot, context, onFirst, onSecond);
+    const BodyPairResult result =
+        bodiesDistanceBound(*bodies_[p.first].geometry, worldFromBody(p.first, worldFromRobot),
+                            *bodies_[p.second].geometry, worldFromBody(p.second, worldFromRobot), context);
+    if (onFirst)
+        *onFirst = result.pointA;
+    if (onSecond)
+        *onSecond = result.pointB;
+    return result.distance;
+}
+
 double Scene::supportAlong(std::size_t body, const RigidTransform &worldFromBody, const Vec3 &direction) const
 {
     const Shape &shape = bodies_[body].geometry->shape();

@@ -259,7 +259,7 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
             }
             ++result.distanceQueries;
             Vec3 onFirst = Vec3::Constant(std::numeric_limits<double>::quiet_NaN()), onSecond = onFirst;
-            const double distance = scene.pairDistance(pair, poses.data(), context, &onFirst, &onSecond);
+            const double distance = scene.pairDistanceBound(pair, poses.data(), context, &onFirst, &onSecond);
             const double clearance = distance - tolerance;
             if (clearance <= 0.0 || distanceSteps >= options.maxStepsPerPair)
             {

@@ -29,6 +29,10 @@ enum class ShapePairQuery
 {
     Intersection,  ///< the verdict only (distance and points may be rough; may stop early)
     Distance,      ///< the verdict and the distance, with closest points
+    /// The verdict and a certified lower bound on the distance within about 1e-2 of it (GJK stops
+    /// early; closed forms stay exact), with the points that gave it: what conservative
+    /// advancement steps on.
+    DistanceBound,
 };
 
 /// Result of a pair query; points in world coordinates, the distance in world units.

@@ -45,13 +45,17 @@ public:
     const Scene &scene() const { return *scene_; }
     bool planar() const { return planar_; }
     QueryContextPool &contexts() const { return contexts_; }
+    /// Number of state checks (isValid and clearance) answered so far.
     std::uint64_t checkCount() const { return checks_.load(std::memory_order_relaxed); }
+    /// Wall time spent inside those checks, in seconds.
+    double checkSeconds() const { return 1e-9 * double(nanoseconds_.load(std::memory_order_relaxed)); }
 
 private:
     std::shared_ptr<const Scene> scene_;
     bool planar_;
     mutable QueryContextPool contexts_;
     mutable std::atomic<std::uint64_t> checks_{0};
+    mutable std::atomic<std::uint64_t> nanoseconds_{0};
 };
 
 /** \brief Continuous motion validation of all robots at once by conservative advancement

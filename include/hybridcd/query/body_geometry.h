@@ -79,6 +79,12 @@ BodyPairResult bodiesIntersect(const BodyGeometry &a, const RigidTransform &worl
 BodyPairResult bodiesDistance(const BodyGeometry &a, const RigidTransform &worldFromA, const BodyGeometry &b,
                               const RigidTransform &worldFromB, QueryContext &context);
 
+/// A certified lower bound on the distance (0 when intersecting), within about 1e-2 of it: GJK
+/// stops as soon as its bracket is that narrow (closed forms stay exact). What conservative
+/// advancement steps on, at a fraction of bodiesDistance's iterations on curved shapes.
+BodyPairResult bodiesDistanceBound(const BodyGeometry &a, const RigidTransform &worldFromA, const BodyGeometry &b,
+                                   const RigidTransform &worldFromB, QueryContext &context);
+
 /// The narrow-phase scratch and counters of the body queries made with `context`: GJK queries
 /// and iterations, GJK answers left undecided (reported intersecting) and polytope pairs settled
 /// by the LP. Counters only grow; read them between queries.

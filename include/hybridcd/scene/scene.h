@@ -120,6 +120,10 @@ public:
     /// when the narrow phase yields them (pairs with a shape); left unchanged otherwise (mesh pairs).
     double pairDistance(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context, Vec3 *onFirst,
                         Vec3 *onSecond) const;
+    /// A certified lower bound on pairDistance within about 1e-2 of it (bodiesDistanceBound; mesh
+    /// pairs give their exact distance), with the points that gave it: what advancement steps on.
+    double pairDistanceBound(std::size_t pair, const RigidTransform *worldFromRobot, QueryContext &context,
+                             Vec3 *onFirst, Vec3 *onSecond) const;
     /// max over the body of direction . x (world frame, `direction` unit), the body placed by
     /// `worldFromBody`; up to a relative 1e-12 above the exact value (never below). Infinite when
     /// unbounded (a half-space in any direction but its normal) or too costly (meshes of more than
