@@ -23,6 +23,7 @@ void declareCheck(CommandLine &cl)
     addCheckerOptions(cl, false);
     cl.footer(R"(
 Prints 1 (collision-free) or 0 (colliding) per pose on stdout, and a summary on stderr.
+For a scene problem (robot.K, obstacle.K) each line holds every robot's pose, robot 1 first.
 Examples:
   hybridcd check problems/window_3d.cfg --states poses.path
   hybridcd check problems/window_3d.cfg --states poses.path --checker lp --mode approximate --tolerance 0.01

@@ -31,6 +31,7 @@ void declareCheckMotion(CommandLine &cl)
     addCheckerOptions(cl, false);
     cl.footer(R"(
 Prints 1 (free) or 0 T per motion, T the last free fraction before contact.
+For a scene problem (robot.K, obstacle.K) each state holds every robot's pose, robot 1 first.
 Examples:
   hybridcd check-motion problems/window_3d.cfg --motions motions.txt
   hybridcd check-motion problems/window_3d.cfg --motions motions.txt --verdict-only
@@ -104,6 +105,7 @@ void declareClearance(CommandLine &cl)
     addCheckerOptions(cl, false);
     cl.footer(R"(
 Prints the distance to the environment per pose; colliding poses get minus a penetration estimate.
+For a scene problem: the smallest distance over the checked pairs (0 when touching) per line of poses.
 Examples:
   hybridcd clearance problems/window_3d.cfg --states poses.path
   hybridcd clearance problems/window_3d.cfg --states poses.path --checker bruteforce

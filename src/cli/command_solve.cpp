@@ -165,6 +165,8 @@ Examples:
   hybridcd solve problems/window_3d.cfg --seed 1 --time 30
   hybridcd solve problems/corridor_2d.cfg --planner kpiece --param range=5 --out corridor.path
 
+A scene problem (robot.K, obstacle.K) is planned for all its robots at once on the compound space;
+each line of the path holds every robot's pose, robot 1 first.
 A problem with `control = kinematic_car|dynamic_car|blimp|quadrotor` is planned with OMPL's control
 planners (kpiece (default), rrt, sst, est, pdst) on OMPL.app's vehicle model.
 )");
