@@ -11,6 +11,8 @@
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/render/gltf_scene.h"
 #include "hybridcd/render/picture.h"
+#include "hybridcd/scene/problem_bodies.h"
+#include "hybridcd/scene/scene_mesh.h"
 
 #include <cmath>
 #include <iostream>
@@ -49,6 +51,68 @@ TriangleMesh placedVolumes(const ExportMesh &volumes, const RigidTransform &worl
     for (const auto &t : volumes.triangles)
         mesh.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
     return mesh;
+}
+}  // namespace
+
+namespace
+{
+// A scene problem: its static bodies, every robot at the start (green) and goal (red) and at
+// states along the path, and each robot's path line.
+void renderScene(const LoadedProblem &problem, const std::string &pathFile, std::size_t samples,
+                 const std::optional<render::View> &view, int width, int height, const std::string &out)
+{
+    const ProblemConfig &cfg = problem.config;
+    const std::size_t robots = cfg.robotCount(), columns = poseColumns(cfg.planar);
+    std::vector<std::vector<RigidTransform>> states;
+    if (!pathFile.empty())
+    {
+        for (const PoseRecord &r : readPoses(pathFile, cfg.planar, robots))
+        {
+            std::vector<RigidTransform> state;
+            for (std::size_t k = 0; k < robots; ++k)
+                state.push_back(transformOfRow(r.values.data() + k * columns, cfg.planar));
+            states.push_back(std::move(state));
+        }
+        if (states.empty())
+            throw InputError(pathFile, 0, "the path has no states");
+    }
+    SceneOptions options;
+    options.bruteForce = true;  // no checkers are needed to draw
+    const auto scene = makeProblemScene(problem, options);
+    std::vector<std::vector<RigidTransform>> shown = {problemStart(cfg), problemGoal(cfg)};
+    // States spread evenly by index between the path's ends.
+    for (std::size_t k = 1; states.size() > 2 && k <= samples; ++k)
+        shown.push_back(states[k * (states.size() - 1) / (samples + 1)]);
+    std::vector<std::vector<RigidTransform>> extent = shown;
+    extent.insert(extent.end(), states.begin(), states.end());
+    const TriangleMesh environment = staticBodiesMesh(*scene, sceneClipBox(*scene, extent));
+    std::vector<TriangleMesh> robotMeshes;
+    for (const std::vector<RigidTransform> &state : shown)
+        robotMeshes.push_back(robotBodiesMesh(*scene, state.data()));
+
+    render::PictureRequest request;
+    request.environment = &environment;
+    request.robot = &robotMeshes.front();
+    request.view = view.value_or(cfg.planar ? render::View::Top : render::View::Isometric);
+    request.width = width;
+    request.height = height;
+    request.placements.push_back({RigidTransform(), request.palette.start, 1.0, 0.35, &robotMeshes[0]});
+    request.placements.push_back({RigidTransform(), request.palette.goal, 1.0, 0.35, &robotMeshes[1]});
+    for (std::size_t k = 2; k < shown.size(); ++k)
+        request.placements.push_back({RigidTransform(),
+                                      render::rampColour(request.palette, double(k - 1) / double(shown.size() - 1)),
+                                      0.55, 0.2, &robotMeshes[k]});
+    for (std::size_t r = 0; r < robots && !states.empty(); ++r)
+    {
+        std::vector<Vec3> line;
+        for (const std::vector<RigidTransform> &state : states)
+            line.push_back(state[r].translation);
+        (r == 0 ? request.pathLine : request.morePathLines.emplace_back()) = std::move(line);
+    }
+    const std::string png = render::encodePng(render::renderPicture(request));
+    AtomicFile f(out);
+    f.stream().write(png.data(), std::streamsize(png.size()));
+    f.commit();
 }
 }  // namespace
 
@@ -116,6 +180,14 @@ int runRender(const CommandLine &cl, const CheckerCatalogue &checkers)
 
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
+    if (cfg.isScene())
+    {
+        if (!gltf.empty())
+            throw UsageError("option --gltf draws one robot; " + cfg.name + " is a scene of " +
+                             std::to_string(cfg.robotCount()) + " robots: use --out FILE.png");
+        if (checkerName)
+            throw UsageError("option --level draws one robot's tree; " + cfg.name + " is a scene problem");
+    }
     std::vector<std::string> inputs = inputFilesOf(problem);
     if (cl.has("path"))
         inputs.push_back(cl.text("path", ""));
@@ -123,6 +195,14 @@ int runRender(const CommandLine &cl, const CheckerCatalogue &checkers)
         checkOutputPath(out, "--out", inputs);
     if (!gltf.empty())
         checkOutputPath(gltf, "--gltf", inputs);
+
+    if (cfg.isScene())
+    {
+        renderScene(problem, cl.has("path") ? cl.text("path", "") : "", std::size_t(samples), view, int(width),
+                    int(height), out);
+        std::cout << "picture written to " << out << " (" << width << "x" << height << ")\n";
+        return kSuccess;
+    }
 
     std::vector<RigidTransform> path;
     if (cl.has("path"))

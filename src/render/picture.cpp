@@ -31,10 +31,12 @@ std::vector<Vec3> scenePoints(const PictureRequest &request)
         addCorners(points, request.environment->bounds(), RigidTransform::identity());
     const BoundingBox robotBox = request.robot->bounds();
     for (const RobotPlacement &p : request.placements)
-        addCorners(points, robotBox, p.worldFromRobot);
+        addCorners(points, p.mesh ? p.mesh->bounds() : robotBox, p.worldFromRobot);
     if (request.volumes)
         points.insert(points.end(), request.volumes->vertices.begin(), request.volumes->vertices.end());
     points.insert(points.end(), request.pathLine.begin(), request.pathLine.end());
+    for (const std::vector<Vec3> &line : request.morePathLines)
+        points.insert(points.end(), line.begin(), line.end());
     return points;
 }
 
@@ -112,15 +114,20 @@ Image renderPicture(const PictureRequest &request)
     for (const RobotPlacement &p : request.placements)
     {
         layer.clear();
-        layer.drawMesh(camera, *request.robot, p.worldFromRobot, p.colour);
+        layer.drawMesh(camera, p.mesh ? *p.mesh : *request.robot, p.worldFromRobot, p.colour);
         composite(layer, colour, depth, p.opacity, p.hiddenOpacity);
     }
-    if (request.pathLine.size() >= 2)
+    if (request.pathLine.size() >= 2 || !request.morePathLines.empty())
     {
         layer.clear();
         const double thickness = std::max(2.5, 0.004 * std::min(w, h));
-        for (std::size_t i = 0; i + 1 < request.pathLine.size(); ++i)
-            layer.drawSegment(camera, request.pathLine[i], request.pathLine[i + 1], thickness, palette.pathLine);
+        auto drawLine = [&](const std::vector<Vec3> &line) {
+            for (std::size_t i = 0; i + 1 < line.size(); ++i)
+                layer.drawSegment(camera, line[i], line[i + 1], thickness, palette.pathLine);
+        };
+        drawLine(request.pathLine);
+        for (const std::vector<Vec3> &line : request.morePathLines)
+            drawLine(line);
         composite(layer, colour, depth, 1.0, kLineHiddenOpacity, slack);
     }
     if (request.volumes && !request.volumes->empty())

@@ -328,3 +328,45 @@ TEST(RenderCli, ScriptDrawsEveryProblemWithASolvedPath)
     EXPECT_EQ(bad.status, 1) << bad.output;
     EXPECT_NE(bad.output.find("problem: not drawn:"), std::string::npos) << bad.output;
 }
+
+TEST(RenderCli, DrawsASceneProblemWithEveryRobotAndObstacle)
+{
+    // problems/crossing_2d.cfg: three robots among half-space walls and primitive obstacles.
+    const std::string cfg = test::sourcePath("problems/crossing_2d.cfg");
+    const std::string bare = test::writeTempFile("crossing.png", ""),
+                      withPath = test::writeTempFile("crossing_path.png", "");
+    ASSERT_EQ(run("render " + cfg + " --out " + bare + " --width 400 --height 260").status, 0);
+    const Decoded image = decodePng(bare);
+    ASSERT_EQ(image.width, 400);
+    // Grey obstacles, green robots at the start and red ones at the goal, each a real share of the picture.
+    std::size_t grey = 0, green = 0, red = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+        {
+            const unsigned char *p = image.at(x, y);
+            grey += p[0] == p[1] && p[1] == p[2] && p[0] < 235 ? 1 : 0;
+            green += p[1] > p[0] + 60 && p[1] > p[2] + 60 ? 1 : 0;
+            red += p[0] > p[1] + 80 && p[0] > p[2] + 80 ? 1 : 0;
+        }
+    const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+    EXPECT_GT(grey, pixels / 10);
+    EXPECT_GT(green, pixels / 200);
+    EXPECT_GT(red, pixels / 200);
+    // The middle wall box stands at the centre of the hall, which is the centre of the top view.
+    const unsigned char *centre = image.at(image.width / 2, image.height / 2);
+    EXPECT_TRUE(centre[0] == centre[1] && centre[1] == centre[2] && centre[0] < 235)
+        << int(centre[0]) << " " << int(centre[1]) << " " << int(centre[2]);
+    // A path of all three robots (start to goal, straight) adds its lines and robots.
+    const std::string path = test::writeTempFile(
+        "crossing_line.path", "-15 -8 0 -15 8 0 15 0 0\n0 0 0 0 0 0 0 0 0\n15 8 0 15 -8 1.5707963267948966 -15 0 0\n");
+    ASSERT_EQ(run("render " + cfg + " --path " + path + " --out " + withPath + " --width 400 --height 260").status, 0);
+    const Decoded lined = decodePng(withPath);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < lined.rgb.size(); i += 3)
+        differing += std::memcmp(&lined.rgb[i], &image.rgb[i], 3) != 0;
+    EXPECT_GT(differing, 500u);
+    // One robot's glTF animation cannot hold a scene: refused, nothing written.
+    const CliRun gltf = run("render " + cfg + " --gltf " + test::writeTempFile("crossing.glb", "") + " 2>&1");
+    EXPECT_EQ(gltf.status, 1) << gltf.output;
+    EXPECT_NE(gltf.output.find("scene of 3 robots"), std::string::npos) << gltf.output;
+}

@@ -34,6 +34,9 @@ struct RobotPlacement
     Rgb colour;
     double opacity = 1.0;        ///< where the robot is in front of the environment
     double hiddenOpacity = 0.3;  ///< where the environment hides it
+    /// Drawn instead of the request's robot when set, placed by worldFromRobot: a scene's robots
+    /// at one state, as one world-frame mesh (with the identity placement).
+    const TriangleMesh *mesh = nullptr;
 };
 
 struct PictureRequest
@@ -43,6 +46,8 @@ struct PictureRequest
     std::vector<RobotPlacement> placements;     ///< drawn in order; opaque ones hide later ones behind them
     /// Robot origins along the path (world frame), joined by a line; empty for none.
     std::vector<Vec3> pathLine;
+    /// Further lines drawn as pathLine is (the other robots of a scene), each on its own.
+    std::vector<std::vector<Vec3>> morePathLines;
     /// Bounding volumes drawn semi-transparent over everything else, in the world frame.
     const TriangleMesh *volumes = nullptr;
     View view = View::Isometric;
