@@ -55,19 +55,24 @@ Vec3 closestPointOnTriangle(const Vec3 &p, const Vec3 &a, const Vec3 &b, const V
     return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1)
+void closestPointsOfSegments(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1, Vec3 &onP, Vec3 &onQ)
 {
+    // Ericson, Real-Time Collision Detection 5.1.9, with the degenerate cases.
     const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
     const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
     double s = 0.0, t = 0.0;
-    if (a <= 0.0 && e <= 0.0)
-        return r.squaredNorm();
-    if (a <= 0.0)
+    if (!(a > 0.0) && !(e > 0.0))
+    {
+        onP = p0;
+        onQ = q0;
+        return;
+    }
+    if (!(a > 0.0))
         t = std::clamp(f / e, 0.0, 1.0);
     else
     {
         const double c = d1.dot(r);
-        if (e <= 0.0)
+        if (!(e > 0.0))
             s = std::clamp(-c / a, 0.0, 1.0);
         else
         {
@@ -86,7 +91,15 @@ double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 
             }
         }
     }
-    return ((p0 + s * d1) - (q0 + t * d2)).squaredNorm();
+    onP = p0 + s * d1;
+    onQ = q0 + t * d2;
+}
+
+double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1)
+{
+    Vec3 onP, onQ;
+    closestPointsOfSegments(p0, p1, q0, q1, onP, onQ);
+    return (onP - onQ).squaredNorm();
 }
 
 double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)

@@ -58,19 +58,11 @@ void orderBySlack(const small_lp::Row<4> *rows, int n, small_lp::Row<4> *sorted,
 bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap,
                    IntersectionResult &result)
 {
-    const double length = direction.norm();
-    if (!(length > 0.0) || !std::isfinite(length))
+    const VertexGap along = vertexGapAlong(direction, a, b);
+    if (!(along.gap > minimumGap))
         return false;
-    const Vec3 n = direction / length;
-    double maxA = -std::numeric_limits<double>::infinity(), minB = std::numeric_limits<double>::infinity();
-    for (const Vec3 &v : a.vertices)
-        maxA = std::max(maxA, n.dot(v));
-    for (const Vec3 &v : b.vertices)
-        minB = std::min(minB, n.dot(v));
-    if (!(minB - maxA > minimumGap))
-        return false;
-    result.separatingNormal = n;
-    result.separatingOffset = 0.5 * (maxA + minB);  // lies in [maxA, minB] in floating point too
+    result.separatingNormal = along.normal;
+    result.separatingOffset = along.offset;
     return true;
 }
 }  // namespace

@@ -335,4 +335,21 @@ double ConvexPiece::maxViolation(const Vec3 &p) const
 }
 
 double ConvexPiece::magnitude() const { return maxAbsCoordinate(vertices); }
+
+VertexGap vertexGapAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b)
+{
+    VertexGap result;
+    const double length = direction.norm();
+    if (!(length > 0.0) || !std::isfinite(length))
+        return result;
+    result.normal = direction / length;
+    double maxA = -std::numeric_limits<double>::infinity(), minB = std::numeric_limits<double>::infinity();
+    for (const Vec3 &v : a.vertices)
+        maxA = std::max(maxA, result.normal.dot(v));
+    for (const Vec3 &v : b.vertices)
+        minB = std::min(minB, result.normal.dot(v));
+    result.gap = minB - maxA;
+    result.offset = 0.5 * (maxA + minB);  // lies in [maxA, minB] in floating point too
+    return result;
+}
 }  // namespace hcd

@@ -136,21 +136,12 @@ struct DualSimplex
 bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap,
                    DualLpResult &result, double *gap)
 {
-    const double length = direction.norm();
-    *gap = -std::numeric_limits<double>::infinity();
-    if (!(length > 0.0) || !std::isfinite(length))
+    const VertexGap along = vertexGapAlong(direction, a, b);
+    *gap = along.gap;
+    if (!(along.gap > minimumGap))
         return false;
-    const Vec3 n = direction / length;
-    double maxA = -std::numeric_limits<double>::infinity(), minB = std::numeric_limits<double>::infinity();
-    for (const Vec3 &v : a.vertices)
-        maxA = std::max(maxA, n.dot(v));
-    for (const Vec3 &v : b.vertices)
-        minB = std::min(minB, n.dot(v));
-    *gap = minB - maxA;
-    if (!(*gap > minimumGap))
-        return false;
-    result.separatingNormal = n;
-    result.separatingOffset = 0.5 * (maxA + minB);
+    result.separatingNormal = along.normal;
+    result.separatingOffset = along.offset;
     return true;
 }
 

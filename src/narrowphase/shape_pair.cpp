@@ -269,46 +269,6 @@ const Table &pairTable()
 }
 }  // namespace
 
-void closestPointsOfSegments(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1, Vec3 &onP, Vec3 &onQ)
-{
-    // Ericson, Real-Time Collision Detection 5.1.9, with the degenerate cases.
-    const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-    double s = 0.0, t = 0.0;
-    if (!(a > 0.0) && !(e > 0.0))
-    {
-        onP = p0;
-        onQ = q0;
-        return;
-    }
-    if (!(a > 0.0))
-        t = std::clamp(f / e, 0.0, 1.0);
-    else
-    {
-        const double c = d1.dot(r);
-        if (!(e > 0.0))
-            s = std::clamp(-c / a, 0.0, 1.0);
-        else
-        {
-            const double b = d1.dot(d2), denom = a * e - b * b;
-            s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-            t = (b * s + f) / e;
-            if (t < 0.0)
-            {
-                t = 0.0;
-                s = std::clamp(-c / a, 0.0, 1.0);
-            }
-            else if (t > 1.0)
-            {
-                t = 1.0;
-                s = std::clamp((b - c) / a, 0.0, 1.0);
-            }
-        }
-    }
-    onP = p0 + s * d1;
-    onQ = q0 + t * d2;
-}
-
 ShapePairResult shapePair(const Shape &a, const RigidTransform &worldFromA, const Shape &b,
                           const RigidTransform &worldFromB, ShapePairQuery query, ShapePairScratch &scratch)
 {

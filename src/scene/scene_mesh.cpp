@@ -54,9 +54,11 @@ std::vector<Vec3> clippedHalfspace(const Vec3 &normal, double offset, const Boun
             const int j = i | (1 << axis);
             if (j == i)
                 continue;
-            const double a = normal.dot(corners[std::size_t(i)]) - offset, b = normal.dot(corners[std::size_t(j)]) - offset;
+            const double a = normal.dot(corners[std::size_t(i)]) - offset,
+                         b = normal.dot(corners[std::size_t(j)]) - offset;
             if ((a < 0.0) != (b < 0.0))
-                points.push_back(corners[std::size_t(i)] + (a / (a - b)) * (corners[std::size_t(j)] - corners[std::size_t(i)]));
+                points.push_back(corners[std::size_t(i)] +
+                                 (a / (a - b)) * (corners[std::size_t(j)] - corners[std::size_t(i)]));
         }
     return points;
 }
@@ -128,7 +130,8 @@ BoundingBox sceneClipBox(const Scene &scene, const std::vector<std::vector<Rigid
         for (std::size_t i = 0; i < scene.bodies().size(); ++i)
             if (scene.bodies()[i].robot >= 0)
             {
-                const BoundingBox b = worldBounds(scene.bodies()[i].geometry->shape(), scene.worldFromBody(i, state.data()));
+                const BoundingBox b =
+                    worldBounds(scene.bodies()[i].geometry->shape(), scene.worldFromBody(i, state.data()));
                 box.extend(b.min);
                 box.extend(b.max);
             }

@@ -9,6 +9,10 @@ namespace hcd
 /// Closest point to `p` on the closed triangle (a, b, c) (Voronoi-region walk; handles degenerate triangles).
 Vec3 closestPointOnTriangle(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c);
 
+/// Closest points of the closed segments p0p1 and q0q1 (zero-length allowed; Ericson 5.1.9): on
+/// return `onP` and `onQ` are the points; the distance is |onP - onQ|.
+void closestPointsOfSegments(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1, Vec3 &onP, Vec3 &onQ);
+
 /// Squared distance between the closed segments p0p1 and q0q1 (zero-length segments allowed).
 double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1);
 

@@ -6,6 +6,7 @@
 #include "hybridcd/geometry/rigid_transform.h"
 
 #include <array>
+#include <limits>
 #include <vector>
 
 namespace hcd
@@ -51,4 +52,16 @@ struct ConvexPiece
     /// The largest absolute vertex coordinate: the scale that relative tolerances refer to.
     double magnitude() const;
 };
+
+/// How far the vertices of `a` and `b` stand apart along a direction: with n the unit vector along
+/// `direction`, gap = min over b's vertices of n . v - max over a's of n . v (positive: the plane
+/// n . x = offset, halfway between, separates the vertices). gap is -infinity for a zero or
+/// non-finite direction.
+struct VertexGap
+{
+    Vec3 normal = Vec3::Zero();
+    double offset = 0.0;
+    double gap = -std::numeric_limits<double>::infinity();
+};
+VertexGap vertexGapAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b);
 }  // namespace hcd

@@ -76,7 +76,4 @@ ShapePairResult shapePair(const Shape &a, const RigidTransform &worldFromA, cons
 ShapePairResult shapeTriangle(const Shape &a, const RigidTransform &worldFromA, const Vec3 &t0, const Vec3 &t1,
                               const Vec3 &t2, ShapePairQuery query, ShapePairScratch &scratch);
 
-/// Closest points of the closed segments p0p1 and q0q1 (zero-length allowed): on return
-/// `onP` and `onQ` are the points; the distance is |onP - onQ|.
-void closestPointsOfSegments(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1, Vec3 &onP, Vec3 &onQ);
 }  // namespace hcd
