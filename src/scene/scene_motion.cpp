@@ -193,6 +193,8 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
     };
     for (std::size_t pair = 0; pair < scene.pairs().size(); ++pair)
     {
+        if (found && options.verdictOnly)
+            break;  // the verdict is settled; which pair touches first does not matter
         const ScenePair &p = scene.pairs()[pair];
         double lpTime = 0.0;
         if (options.translationLp && translationContact(scene, pair, start, goal, sweeps, lpTime))
