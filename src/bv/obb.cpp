@@ -113,6 +113,27 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance)
         gap = std::max(gap, std::fabs(t[i]) - b.halfExtents[i] - absR.row(i).dot(a.halfExtents));
         gap = std::max(gap, std::fabs(t.dot(r.col(i))) - a.halfExtents[i] - absR.col(i).dot(b.halfExtents));
     }
+    // The nine edge-edge axes b_i x a_j (in b's frame e_i x r.col(j)), of length sin(angle): the
+    // gap along an unnormalised axis L is (|t . L| - a's and b's half widths along L) / |L|. Flat
+    // boxes (one triangle each) in skew poses are often farthest apart along one of these.
+    const Vec3 &ha = a.halfExtents, &hb = b.halfExtents;
+    for (int i = 0; i < 3; ++i)
+    {
+        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+        for (int j = 0; j < 3; ++j)
+        {
+            const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            const double lengthSquared = 1.0 - r(i, j) * r(i, j);
+            if (!(lengthSquared > 1e-6))
+                continue;  // nearly parallel edges: the face axes bound this direction already
+            const double along = std::fabs(t[i2] * r(i1, j) - t[i1] * r(i2, j));
+            const double halfWidths =
+                hb[i1] * absR(i2, j) + hb[i2] * absR(i1, j) + ha[j1] * absR(i, j2) + ha[j2] * absR(i, j1);
+            const double excess = along - halfWidths;
+            if (excess > gap * std::sqrt(lengthSquared))
+                gap = excess / std::sqrt(lengthSquared);
+        }
+    }
     return std::max(0.0, gap - tolerance);
 }
 }  // namespace hcd

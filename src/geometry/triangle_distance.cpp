@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hcd
 {
@@ -102,11 +103,13 @@ double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 
     return (onP - onQ).squaredNorm();
 }
 
-double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
+namespace
 {
-    if (trianglesIntersect(a0, a1, a2, b0, b1, b2))
-        return 0.0;
-    // Disjoint closed triangles attain their distance at a vertex of one or between two edges.
+// Squared distance of two disjoint closed triangles: they attain it at a vertex of one or between
+// two edges.
+double disjointTriangleDistanceSquared(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                                       const Vec3 &b2)
+{
     double best = std::numeric_limits<double>::infinity();
     const Vec3 *a[3] = {&a0, &a1, &a2}, *b[3] = {&b0, &b1, &b2};
     for (int i = 0; i < 3; ++i)
@@ -116,6 +119,21 @@ double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
         for (int j = 0; j < 3; ++j)
             best = std::min(best, segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
     }
-    return std::sqrt(best);
+    return best;
+}
+
+}  // namespace
+
+double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
+{
+    if (trianglesIntersect(a0, a1, a2, b0, b1, b2))
+        return 0.0;
+    return std::sqrt(disjointTriangleDistanceSquared(a0, a1, a2, b0, b1, b2));
+}
+
+double disjointTriangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                                const Vec3 &b2)
+{
+    return std::sqrt(disjointTriangleDistanceSquared(a0, a1, a2, b0, b1, b2));
 }
 }  // namespace hcd

@@ -204,6 +204,8 @@ double OctreeChecker::doDistance(const RigidTransform &worldFromRobot, QueryCont
         const Octree::Cell &cell = cells[p.environment];
         const double sphereGap =
             (robotBox.center - cell.center).norm() - rNodes[p.robot].radius - cellRadius(cell) - tolerance;
+        if (sphereGap >= best)  // beyond the best distance already: no box bound needed
+            return sphereGap;
         return std::max(sphereGap, obbDistanceLowerBound(robotBox, cellBox(cell), tolerance));
     };
     BasicTraversalStack<BoundedPair> stack;
@@ -226,8 +228,9 @@ double OctreeChecker::doDistance(const RigidTransform &worldFromRobot, QueryCont
                 {
                     const std::uint32_t et = references[cell.firstTriangle + j];
                     ++triangleTests;
-                    best = std::min(best, triangleDistance(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
-                                                           env.corner(et, 1), env.corner(et, 2)));
+                    best = std::min(best,
+                                    disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2],
+                                                             env.corner(et, 0), env.corner(et, 1), env.corner(et, 2)));
                 }
             }
             continue;

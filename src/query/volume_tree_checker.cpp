@@ -354,6 +354,9 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
         const double sphereGap =
             (VolumeTraits<Volume>::center(robotVolume) - VolumeTraits<Volume>::center(envVolume)).norm() -
             rNodes[p.robot].radius - eNodes[p.environment].radius - tolerance;
+        // A pair the bounding spheres already put beyond the best distance needs no volume bound.
+        if (sphereGap >= best)
+            return sphereGap;
         return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
     // Each pair's bound is computed once, when it is pushed, and compared again with the best
@@ -377,8 +380,10 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
                 {
                     const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
                     ++triangleTests;
-                    best = std::min(best, triangleDistance(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
-                                                           env.corner(et, 1), env.corner(et, 2)));
+                    // doCollides answered free above: no pair of triangles meets.
+                    best = std::min(best,
+                                    disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2],
+                                                             env.corner(et, 0), env.corner(et, 1), env.corner(et, 2)));
                 }
             }
             continue;

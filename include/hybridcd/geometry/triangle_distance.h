@@ -20,4 +20,9 @@ double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 
 /// smallest of the vertex-to-triangle and edge-to-edge distances, in floating point (relative error a
 /// few ulps of the coordinates' magnitude).
 double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2);
+
+/// triangleDistance, bit for bit, for two triangles known not to intersect (e.g. after a collision
+/// query answered free), without the intersection test.
+double disjointTriangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                                const Vec3 &b2);
 }  // namespace hcd
