@@ -359,18 +359,23 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
             return sphereGap;
         return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
-    // Each pair's bound is computed once, when it is pushed, and compared again with the best
-    // distance when it is popped.
-    BasicTraversalStack<BoundedPair> stack;
-    stack.push({{0, 0}, lowerBound({0, 0})});
-    while (!stack.empty())
+    // Each pair's bound is computed once, when it is pushed. Best first: once the nearest pair
+    // left is no nearer than the best distance, none is.
+    NearestPairQueue &queue = context.scratch<NearestPairQueue>();
+    queue.clear();
+    // The nearer child is taken next without a trip through the queue when nothing queued is nearer.
+    BoundedPair current{{0, 0}, lowerBound({0, 0})};
+    bool haveCurrent = true;
+    while (haveCurrent || !queue.empty())
     {
-        const BoundedPair top = stack.pop();
-        const NodePair pair = top.pair;
+        if (!haveCurrent)
+            current = queue.pop();
+        haveCurrent = false;
+        const NodePair pair = current.pair;
         const typename VolumeTree<Volume>::Node &rn = rNodes[pair.robot];
         const typename VolumeTree<Volume>::Node &en = eNodes[pair.environment];
-        if (top.bound >= best)
-            continue;
+        if (current.bound >= best)
+            break;
         if (rn.isLeaf() && en.isLeaf())
         {
             for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
@@ -389,18 +394,26 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
             continue;
         }
         const bool splitRobot = en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
-        NodePair first = splitRobot ? NodePair{std::uint32_t(rn.firstChild), pair.environment}
-                                    : NodePair{pair.robot, std::uint32_t(en.firstChild)};
-        NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
-                                     : NodePair{pair.robot, std::uint32_t(en.firstChild + 1)};
+        const NodePair first = splitRobot ? NodePair{std::uint32_t(rn.firstChild), pair.environment}
+                                          : NodePair{pair.robot, std::uint32_t(en.firstChild)};
+        const NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
+                                           : NodePair{pair.robot, std::uint32_t(en.firstChild + 1)};
         BoundedPair nearer{first, lowerBound(first)}, farther{second, lowerBound(second)};
         if (nearer.bound > farther.bound)
             std::swap(nearer, farther);
         // Pairs already beyond the best distance are dropped here rather than when popped.
         if (!(farther.bound >= best))
-            stack.push(farther);  // popped after the nearer one
+            queue.push(farther);
         if (!(nearer.bound >= best))
-            stack.push(nearer);
+        {
+            if (queue.empty() || nearer.bound <= queue.nearestBound())
+            {
+                current = nearer;
+                haveCurrent = true;
+            }
+            else
+                queue.push(nearer);
+        }
     }
     context.stats.boundingVolumeTests += boxTests;
     context.stats.primitiveTests += triangleTests;

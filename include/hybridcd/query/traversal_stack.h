@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// A per-query stack of node pairs: fixed storage on the call stack, heap only if it ever overflows.
+// Node pairs waiting in a tree traversal: a per-query stack (fixed storage on the call stack, heap
+// only if it ever overflows), and a queue nearest pair first for distances.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -52,4 +54,33 @@ private:
 };
 
 using TraversalStack = BasicTraversalStack<NodePair>;
+
+/// Node pairs by their lower bound, smallest first: best-first branch and bound for distances,
+/// which expands only pairs whose bound is below the distance and stops at the first pair whose
+/// bound reaches the best found. Kept in a query context (QueryContext::scratch), so a warmed-up
+/// context allocates nothing.
+class NearestPairQueue
+{
+public:
+    void clear() { heap_.clear(); }
+    bool empty() const { return heap_.empty(); }
+    /// The smallest bound queued (the queue must not be empty).
+    double nearestBound() const { return heap_.front().bound; }
+    void push(const BoundedPair &p)
+    {
+        heap_.push_back(p);
+        std::push_heap(heap_.begin(), heap_.end(), farther);
+    }
+    BoundedPair pop()
+    {
+        std::pop_heap(heap_.begin(), heap_.end(), farther);
+        const BoundedPair p = heap_.back();
+        heap_.pop_back();
+        return p;
+    }
+
+private:
+    static bool farther(const BoundedPair &x, const BoundedPair &y) { return x.bound > y.bound; }
+    std::vector<BoundedPair> heap_;
+};
 }  // namespace hcd
