@@ -29,15 +29,31 @@ Obb Obb::fitWithAxes(const std::vector<Vec3> &points, const Mat3 &axes)
 
 Obb Obb::fit(const std::vector<Vec3> &points)
 {
+    // One pass for the mean and the axis-aligned box (what fitWithAxes gives for the identity), a
+    // second for the covariance about the mean (two passes: no cancellation far from the origin).
     Vec3 mean = Vec3::Zero();
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    double magnitude = 0.0;
     for (const Vec3 &p : points)
+    {
         mean += p;
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+        magnitude = std::max(magnitude, p.cwiseAbs().maxCoeff());
+    }
     mean /= double(points.size());
     Mat3 covariance = Mat3::Zero();
     for (const Vec3 &p : points)
-        covariance += (p - mean) * (p - mean).transpose();
+    {
+        const Vec3 d = p - mean;
+        covariance.noalias() += d * d.transpose();
+    }
 
-    Obb best = fitWithAxes(points, Mat3::Identity());
+    Obb best;
+    best.axes = Mat3::Identity();
+    best.center = 0.5 * (lo + hi);
+    best.halfExtents = (0.5 * (hi - lo)).array() + (1e-9 * magnitude + 1e-300);
     Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);
     if (solver.info() == Eigen::Success && solver.eigenvectors().allFinite())
     {
