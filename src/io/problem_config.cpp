@@ -39,6 +39,11 @@ struct Entry
     int line;
 };
 
+// Shape dimensions and half-space coefficients are kept where their squares and products stay
+// finite and normal.
+constexpr double kLargestShapeNumber = 1e100;
+constexpr double kSmallestShapeNumber = 1e-100;
+
 class Parser
 {
 public:
@@ -379,6 +384,14 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
                 if (!(v > 0.0))
                     throw InputError(path, e.line,
                                      "'" + key + " = " + first + "' needs positive dimensions, got '" + e.value + "'");
+        // The shape tests square and multiply dimensions: beyond these magnitudes they would over- or
+        // underflow and could call an overlapping pair free.
+        for (double v : spec.parameters)
+            if (std::fabs(v) > kLargestShapeNumber || (v != 0.0 && std::fabs(v) < kSmallestShapeNumber))
+                throw InputError(path, e.line,
+                                 "'" + key + " = " + first +
+                                     "' takes numbers of magnitude 1e-100 to 1e100 (or 0 in a " + "half-space), got '" +
+                                     e.value + "'");
         return spec;
     };
     std::map<int, const Entry *> robotEntries, obstacleEntries;
