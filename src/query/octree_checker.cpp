@@ -101,8 +101,8 @@ bool OctreeChecker::anyPairWithin(const RigidTransform &worldFromRobot, Slack sl
         ++triangleTests;
         const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
         return !proximity ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
-                          : triangleDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2) <=
-                                triangleDelta * (1.0 + 1e-9) + tolerance;
+                          : trianglesWithinDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2,
+                                                    triangleDelta * (1.0 + 1e-9) + tolerance);
     };
 
     bool hit = false;

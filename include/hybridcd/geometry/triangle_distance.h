@@ -25,4 +25,10 @@ double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
 /// query answered free), without the intersection test.
 double disjointTriangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                                 const Vec3 &b2);
+
+/// `triangleDistance(a, b) <= bound`, the same answer in every case, decided with less work: a
+/// separating plane first, then the vertex and edge distances, and the exact intersection test
+/// only when neither settles it. For proximity queries.
+bool trianglesWithinDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                             const Vec3 &b2, double bound);
 }  // namespace hcd
