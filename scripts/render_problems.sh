@@ -31,14 +31,14 @@ if [ ${#problems[@]} -eq 0 ]; then
   [ -d "$resources" ] && problems+=("$resources"/2D/*.cfg "$resources"/3D/*.cfg)
 fi
 
-# One attempt per line, "PLANNER SECONDS [extra solve options]", tried in order. The defaults solve
+# One attempt per line, "PLANNER SECONDS [extra solve options, --seed N among them]", tried in order. The defaults solve
 # most problems; the hard ones get the planner that solved them when measured and more time.
 attempts_for() {
   case $1 in
     Abstract) printf '%s\n' "kpiece 60" "rrtconnect 120" ;;
     alpha-1.0) printf '%s\n' "rrtconnect 300" "kpiece 300" ;;
     bugtrap) printf '%s\n' "rrtconnect 120" "kpiece 120" "bkpiece 120" ;;
-    BugTrap_dcar) printf '%s\n' "rrt 120 --goal-threshold 0.5 --propagation-step 0.1 --control-steps 1,10" "sst 120" ;;
+    BugTrap_dcar) printf '%s\n' "kpiece 120 --seed 3" "rrt 120 --goal-threshold 0.5 --propagation-step 0.1 --control-steps 1,10" "sst 120" ;;
     quadrotor_window) printf '%s\n' "kpiece 60 --goal-threshold 1.5" "rrt 60 --goal-threshold 1.5" ;;
     Maze_kcar | corridor_kcar) printf '%s\n' "rrt 60" "kpiece 60" ;;
     *) printf '%s\n' "rrtconnect 30" "kpiece 30" ;;
@@ -122,13 +122,19 @@ for cfg in "${problems[@]}"; do
   if [ -z "$path" ] && [ -f "$cfg" ]; then
     while read -r planner seconds extra; do
       seconds=${SOLVE_TIME:-$seconds}
+      # An attempt may name its seed ("--seed N" among its options); seed 1 otherwise.
+      seed=1
+      if [[ $extra =~ --seed\ ([0-9]+) ]]; then
+        seed=${BASH_REMATCH[1]}
+        extra=${extra/--seed $seed/}
+      fi
       candidate=$out/$name.path
       # shellcheck disable=SC2086 # extra holds several options
-      if "$cli" solve "$cfg" --planner "$planner" --seed 1 --time "$seconds" $extra --quiet --out "$candidate" \
+      if "$cli" solve "$cfg" --planner "$planner" --seed "$seed" --time "$seconds" $extra --quiet --out "$candidate" \
         >"$out/$name.solve.txt" 2>&1 </dev/null; then
         if verdict=$(verify_path "$cfg" "$candidate" "$kinodynamic"); then
           path=$candidate
-          note="${note}path solved into $candidate ($planner, seed 1, $(grep -m 1 '^solve time:' \
+          note="${note}path solved into $candidate ($planner, seed $seed, $(grep -m 1 '^solve time:' \
             "$out/$name.solve.txt" | sed 's/^solve time: //')), verified: $verdict"
           break
         fi
