@@ -44,7 +44,8 @@ bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, d
 bool obbsOverlap(const Obb &a, const Obb &b, double tolerance);
 
 /// A lower bound on the distance between box `a` (mapped by `worldFromA`) and box `b`: the largest
-/// gap along the six face normals, less `tolerance`, and never below zero.
+/// gap along the fifteen separating axes (six face normals, nine edge-edge crossings), less
+/// `tolerance`, and never below zero.
 double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance);
 
 /// The same bound for two boxes given in one frame.
