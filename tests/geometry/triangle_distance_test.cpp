@@ -133,8 +133,8 @@ TEST(TriangleDistance, BracketsDenseSampling)
             for (int k = 0; k < 3; ++k)
                 longest = std::max(longest, (t[std::size_t(k)] - t[std::size_t((k + 1) % 3)]).norm());
         EXPECT_LE(d, nearest + 1e-12);
-        EXPECT_GE(d, nearest - 4.0 * longest /
-                                   kSteps);  // each triangle's samples lie within 2 longest / kSteps of its points
+        // Each triangle's samples lie within 2 longest / kSteps of its points.
+        EXPECT_GE(d, nearest - 4.0 * longest / kSteps);
     }
 }
 }  // namespace
