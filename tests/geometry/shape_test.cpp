@@ -39,7 +39,8 @@ std::vector<Vec3> samplesInside(const Shape &shape, int count, TestRandom &rng)
 
 TEST(Shape, RejectsInvalidParameters)
 {
-    for (double bad : {0.0, -1.0, kNaN, kInf})
+    // Non-positive, non-finite, and lengths whose squares would over- or underflow.
+    for (double bad : {0.0, -1.0, kNaN, kInf, 1e101, 1e-101})
     {
         EXPECT_THROW(Shape::sphere(bad), std::invalid_argument);
         EXPECT_THROW(Shape::box(Vec3(1, bad, 1)), std::invalid_argument);
@@ -51,6 +52,7 @@ TEST(Shape, RejectsInvalidParameters)
     }
     EXPECT_THROW(Shape::halfspace(Vec3::Zero(), 0.0), std::invalid_argument);
     EXPECT_THROW(Shape::halfspace(Vec3(0, 0, 1), kNaN), std::invalid_argument);
+    EXPECT_THROW(Shape::halfspace(Vec3(0, 0, 1), 1e101), std::invalid_argument);
     EXPECT_THROW(Shape::convex({}), std::invalid_argument);
     EXPECT_THROW(Shape::convex({Vec3(0, kInf, 0)}), std::invalid_argument);
     EXPECT_THROW(Shape::mesh(nullptr), std::invalid_argument);

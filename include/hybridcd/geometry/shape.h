@@ -39,7 +39,8 @@ const char *shapeKindName(ShapeKind kind);
 std::optional<ShapeKind> shapeKindFromName(const std::string &name);
 
 /// One shape in its own frame. Build it with the named constructors, which validate their
-/// parameters (finite, strictly positive lengths) and throw std::invalid_argument otherwise.
+/// parameters (lengths from 1e-100 to 1e100, a half-space's offset within +-1e100, all finite) and
+/// throw std::invalid_argument otherwise.
 /// Immutable after construction and cheap to copy (point sets and meshes are shared).
 class Shape
 {
