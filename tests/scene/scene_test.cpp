@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -109,9 +110,12 @@ TEST(Scene, CoherentStreamsKeepTheBroadPhaseExact)
     auto poses = randomState(4, Vec3(-6, -6, -6), Vec3(6, 6, 6), false, rng);
     int colliding = 0;
     const int n = test::cases(2000);
+    // Ten walks whatever the case count (sanitizer builds draw fewer): with only a couple of
+    // starting states, both could collide (or neither) and the walk's answers would hardly vary.
+    const int walk = std::max(1, n / 10);
     for (int i = 0; i < n; ++i)
     {
-        if (i % 200 == 0)
+        if (i % walk == 0)
             poses = randomState(4, Vec3(-6, -6, -6), Vec3(6, 6, 6), false, rng);
         for (RigidTransform &pose : poses)
         {
