@@ -233,11 +233,11 @@ bool SceneMotionValidator::checkMotion(const ob::State *s1, const ob::State *s2)
     // The bounds are a box in position (convex), so both ends inside keeps the whole motion inside.
     if (!si_->satisfiesBounds(s2))
     {
-        invalid_++;
+        invalidCount_.fetch_add(1, std::memory_order_relaxed);
         return false;
     }
     const bool valid = check(s1, s2, true).valid;
-    valid ? valid_++ : invalid_++;
+    (valid ? validCount_ : invalidCount_).fetch_add(1, std::memory_order_relaxed);
     return valid;
 }
 
@@ -258,10 +258,10 @@ bool SceneMotionValidator::checkMotion(const ob::State *s1, const ob::State *s2,
         if (lastValid.first)
             si_->getStateSpace()->interpolate(s1, s2, result.lastValidTime, lastValid.first);
         lastValid.second = result.lastValidTime;
-        invalid_++;
+        invalidCount_.fetch_add(1, std::memory_order_relaxed);
         return false;
     }
-    valid_++;
+    validCount_.fetch_add(1, std::memory_order_relaxed);
     return true;
 }
 

@@ -13,6 +13,7 @@
 #include <ompl/geometric/SimpleSetup.h>
 
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -75,9 +76,15 @@ public:
     /// SceneMotionOptions (the two-state checkMotion uses it).
     SceneMotionResult check(const ompl::base::State *s1, const ompl::base::State *s2, bool verdictOnly = false) const;
 
+    /// Motions answered valid and invalid so far. Atomic: OMPL's own counters (valid_, invalid_)
+    /// are plain integers, which parallel planners would race on, so they stay untouched.
+    std::uint64_t validMotions() const { return validCount_.load(); }
+    std::uint64_t invalidMotions() const { return invalidCount_.load(); }
+
 private:
     std::shared_ptr<const SceneValidityChecker> validity_;
     SceneMotionOptions options_;
+    mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0};
 };
 
 /// A SimpleSetup for a scene problem with its typed adapters.
