@@ -2,6 +2,7 @@
 #include "hybridcd/geometry/triangle_distance.h"
 
 #include "hybridcd/geometry/triangle_intersection.h"
+#include "plane_side.h"
 
 #include <algorithm>
 #include <cmath>
@@ -122,31 +123,6 @@ double disjointTriangleDistanceSquared(const Vec3 &a0, const Vec3 &a1, const Vec
     return best;
 }
 
-// A lower bound on the distance from the triangle (p0, p1, p2) to the plane of (q0, q1, q2) when
-// the first lies wholly on one side of it, else 0. The computed normal's direction may be off by
-// an angle of at most ~4 eps |e1| |e2| / |n| (the cross product's rounding), which moves each
-// offset by that angle times the point's distance from q0; the bound is lowered by that much.
-double planeGap(const Vec3 &p0, const Vec3 &p1, const Vec3 &p2, const Vec3 &q0, const Vec3 &q1, const Vec3 &q2)
-{
-    const Vec3 e1 = q1 - q0, e2 = q2 - q0;
-    const Vec3 n = e1.cross(e2);
-    const double nNorm = n.norm();
-    if (!(nNorm > 0.0))
-        return 0.0;
-    const Vec3 d0 = p0 - q0, d1 = p1 - q0, d2 = p2 - q0;
-    const double s0 = n.dot(d0), s1 = n.dot(d1), s2 = n.dot(d2);
-    double nearest;
-    if (s0 > 0.0 && s1 > 0.0 && s2 > 0.0)
-        nearest = std::min({s0, s1, s2});
-    else if (s0 < 0.0 && s1 < 0.0 && s2 < 0.0)
-        nearest = -std::max({s0, s1, s2});
-    else
-        return 0.0;
-    constexpr double kEps = std::numeric_limits<double>::epsilon();
-    const double reach = std::sqrt(std::max({d0.squaredNorm(), d1.squaredNorm(), d2.squaredNorm()}));
-    const double angle = 8.0 * kEps * e1.norm() * e2.norm() / nNorm;
-    return nearest / nNorm * (1.0 - 8.0 * kEps) - (angle + 8.0 * kEps) * reach;
-}
 }  // namespace
 
 double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)

@@ -2,6 +2,7 @@
 #include "hybridcd/geometry/triangle_intersection.h"
 
 #include "hybridcd/geometry/exact_predicates.h"
+#include "plane_side.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,33 +13,6 @@ namespace hcd
 {
 namespace
 {
-// Whether b0, b1, b2 lie strictly on one side of the plane of (a0, a1, a2), decided in floating
-// point: the normal once, then one dot product per point, each trusted only when it exceeds its
-// rounding bound (8 eps times the sum of the absolute products that make it up covers the
-// differences, the cross product and the dot product). False means "not separated" or "not sure":
-// the exact predicates decide then. Over- or underflow leaves the bound unmet, never a wrong sign.
-bool separatedByPlane(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
-{
-    const Vec3 e1 = a1 - a0, e2 = a2 - a0;
-    const Vec3 n = e1.cross(e2);
-    const Vec3 magnitude(std::fabs(e1.y() * e2.z()) + std::fabs(e1.z() * e2.y()),
-                         std::fabs(e1.z() * e2.x()) + std::fabs(e1.x() * e2.z()),
-                         std::fabs(e1.x() * e2.y()) + std::fabs(e1.y() * e2.x()));
-    constexpr double kRounding = 8.0 * std::numeric_limits<double>::epsilon();
-    int side = 0;
-    for (const Vec3 *b : {&b0, &b1, &b2})
-    {
-        const Vec3 d = *b - a0;
-        const double offset = n.dot(d);
-        const double bound = kRounding * magnitude.dot(d.cwiseAbs());
-        const int sign = offset > bound ? 1 : offset < -bound ? -1 : 0;
-        if (sign == 0 || (side != 0 && sign != side))
-            return false;
-        side = sign;
-    }
-    return true;
-}
-
 // A projection onto a coordinate plane: drops axis `dropped`, keeps (u, v) in cyclic order.
 struct Projection
 {
