@@ -24,7 +24,7 @@ void requirePositive(double value, const char *what)
     if (!std::isfinite(value) || !(value > 0.0))
         throw std::invalid_argument(std::string("Shape: ") + what + " must be finite and positive");
     if (value > kLargestLength || value < kSmallestLength)
-        throw std::invalid_argument(std::string("Shape: ") + what + " must lie within 1e-100 to 1e100");
+        throw std::invalid_argument(std::string("Shape: ") + what + " must be of magnitude 1e-100 to 1e100");
 }
 
 void requirePositive(const Vec3 &value, const char *what)
@@ -156,7 +156,8 @@ Shape Shape::halfspace(const Vec3 &normal, double offset)
     if (!normal.allFinite() || !std::isfinite(offset) || !(length > 0.0) || !std::isfinite(length))
         throw std::invalid_argument("Shape: half-space normal must be finite and non-zero, offset finite");
     if (!(std::fabs(offset / length) <= kLargestLength))
-        throw std::invalid_argument("Shape: half-space offset (over the normal's length) must lie within +-1e100");
+        throw std::invalid_argument(
+            "Shape: half-space offset over the normal's length must be of magnitude at most 1e100");
     Shape s;
     s.kind_ = ShapeKind::Halfspace;
     s.normal_ = normal / length;

@@ -13,6 +13,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 namespace hcd
 {
@@ -38,11 +39,6 @@ struct Entry
     std::string value;
     int line;
 };
-
-// Shape dimensions and half-space coefficients are kept where their squares and products stay
-// finite and normal.
-constexpr double kLargestShapeNumber = 1e100;
-constexpr double kSmallestShapeNumber = 1e-100;
 
 class Parser
 {
@@ -384,14 +380,15 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
                 if (!(v > 0.0))
                     throw InputError(path, e.line,
                                      "'" + key + " = " + first + "' needs positive dimensions, got '" + e.value + "'");
-        // The shape tests square and multiply dimensions: beyond these magnitudes they would over- or
-        // underflow and could call an overlapping pair free.
-        for (double v : spec.parameters)
-            if (std::fabs(v) > kLargestShapeNumber || (v != 0.0 && std::fabs(v) < kSmallestShapeNumber))
-                throw InputError(path, e.line,
-                                 "'" + key + " = " + first +
-                                     "' takes numbers of magnitude 1e-100 to 1e100 (or 0 in a " + "half-space), got '" +
-                                     e.value + "'");
+        // Shape keeps the limits (magnitudes whose squares and products stay finite and normal).
+        try
+        {
+            primitiveShapeOfSpec(spec);
+        }
+        catch (const std::invalid_argument &x)
+        {
+            throw InputError(path, e.line, "'" + key + " = " + e.value + "': " + x.what());
+        }
         return spec;
     };
     std::map<int, const Entry *> robotEntries, obstacleEntries;
@@ -565,4 +562,24 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
     }
     return cfg;
 }
+Shape primitiveShapeOfSpec(const ShapeSpec &spec)
+{
+    const std::vector<double> &p = spec.parameters;
+    if (spec.kind == "sphere")
+        return Shape::sphere(p.at(0));
+    if (spec.kind == "box")
+        return Shape::box(0.5 * Vec3(p.at(0), p.at(1), p.at(2)));
+    if (spec.kind == "capsule")
+        return Shape::capsule(p.at(0), 0.5 * p.at(1));
+    if (spec.kind == "cylinder")
+        return Shape::cylinder(p.at(0), 0.5 * p.at(1));
+    if (spec.kind == "cone")
+        return Shape::cone(p.at(0), 0.5 * p.at(1));
+    if (spec.kind == "ellipsoid")
+        return Shape::ellipsoid(Vec3(p.at(0), p.at(1), p.at(2)));
+    if (spec.kind == "halfspace")
+        return Shape::halfspace(Vec3(p.at(0), p.at(1), p.at(2)), p.at(3));
+    throw std::invalid_argument("not a primitive shape: '" + spec.kind + "'");
+}
+
 }  // namespace hcd

@@ -11,7 +11,6 @@ namespace hcd
 {
 Shape shapeOfSpec(const ShapeSpec &spec, const std::shared_ptr<const TriangleMesh> &mesh, const std::string &cfgPath)
 {
-    const std::vector<double> &p = spec.parameters;
     try
     {
         if (spec.kind == "mesh" || spec.kind == "convex")
@@ -20,26 +19,12 @@ Shape shapeOfSpec(const ShapeSpec &spec, const std::shared_ptr<const TriangleMes
                 throw std::invalid_argument("the mesh file " + spec.file + " has no triangles");
             return spec.kind == "mesh" ? Shape::mesh(mesh) : Shape::convex(mesh->vertices);
         }
-        if (spec.kind == "sphere")
-            return Shape::sphere(p.at(0));
-        if (spec.kind == "box")
-            return Shape::box(0.5 * Vec3(p.at(0), p.at(1), p.at(2)));
-        if (spec.kind == "capsule")
-            return Shape::capsule(p.at(0), 0.5 * p.at(1));
-        if (spec.kind == "cylinder")
-            return Shape::cylinder(p.at(0), 0.5 * p.at(1));
-        if (spec.kind == "cone")
-            return Shape::cone(p.at(0), 0.5 * p.at(1));
-        if (spec.kind == "ellipsoid")
-            return Shape::ellipsoid(Vec3(p.at(0), p.at(1), p.at(2)));
-        if (spec.kind == "halfspace")
-            return Shape::halfspace(Vec3(p.at(0), p.at(1), p.at(2)), p.at(3));
+        return primitiveShapeOfSpec(spec);
     }
     catch (const std::exception &e)
     {
         throw InputError(cfgPath, spec.line, spec.kind + ": " + e.what());
     }
-    throw InputError(cfgPath, spec.line, "unknown shape '" + spec.kind + "'");
 }
 
 std::vector<RigidTransform> problemStart(const ProblemConfig &config)

@@ -2,6 +2,7 @@
 // Reads OMPL.app problem files (.cfg): [problem], [benchmark] and [planner] sections.
 #pragma once
 
+#include "hybridcd/geometry/shape.h"
 #include "hybridcd/io/planner_request.h"
 
 #include <optional>
@@ -34,6 +35,11 @@ struct ShapeSpec
     std::string file;  ///< mesh and convex: the mesh file, resolved relative to the .cfg's folder
     int line = 0;      ///< the .cfg line that names it
 };
+
+/// The primitive a spec names (kind sphere ... halfspace; not mesh or convex), in the body's frame.
+/// Throws std::invalid_argument, from Shape, for dimensions it refuses (README, "Scenes of many
+/// bodies": magnitudes 1e-100 to 1e100); the .cfg reader turns that into an InputError with the line.
+Shape primitiveShapeOfSpec(const ShapeSpec &spec);
 
 /// Robot 2, 3, ... of a scene problem (`robot.K`, `start.K.*`, `goal.K.*`).
 struct RobotSpec
