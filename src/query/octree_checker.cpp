@@ -4,6 +4,7 @@
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/narrowphase/convex_decomposition.h"
+#include "hybridcd/query/best_first_distance.h"
 #include "hybridcd/query/placed_robot.h"
 #include "hybridcd/query/traversal_stack.h"
 #include "hybridcd/query/volume_ratio.h"
@@ -189,16 +190,15 @@ double OctreeChecker::doDistance(const RigidTransform &worldFromRobot, QueryCont
     if (doCollides(worldFromRobot, context))
         return 0.0;
 
-    // Branch and bound, nearer pair first, as the volume trees do.
+    // Branch and bound, nearest pair first (best_first_distance.h), as the volume trees do.
     const double tolerance = toleranceFor(worldFromRobot);
     const auto &rNodes = robotTree_.nodes();
     const auto &cells = octree_.cells();
     const auto &references = octree_.triangleReferences();
     const TriangleMesh &env = *scene_.environment;
     PlacedRobot<Obb> placed(robotTree_, worldFromRobot, context);
-    double best = std::numeric_limits<double>::infinity();
     std::uint64_t boxTests = 0, triangleTests = 0;
-    const auto lowerBound = [&](const NodePair &p) {
+    const auto lowerBound = [&](const NodePair &p, double best) {
         ++boxTests;
         const Obb &robotBox = placed.volume(p.robot);
         const Octree::Cell &cell = cells[p.environment];
@@ -208,54 +208,43 @@ double OctreeChecker::doDistance(const RigidTransform &worldFromRobot, QueryCont
             return sphereGap;
         return std::max(sphereGap, obbDistanceLowerBound(robotBox, cellBox(cell), tolerance));
     };
-    BasicTraversalStack<BoundedPair> stack;
-    stack.push({{0, 0}, lowerBound({0, 0})});
-    std::vector<BoundedPair> children;
-    while (!stack.empty())
-    {
-        const BoundedPair top = stack.pop();
-        const NodePair pair = top.pair;
-        const VolumeTree<Obb>::Node &rn = rNodes[pair.robot];
-        const Octree::Cell &cell = cells[pair.environment];
-        if (top.bound >= best)
-            continue;
-        if (rn.isLeaf() && cell.isLeaf())
+    const auto isLeafPair = [&](const NodePair &p) {
+        return rNodes[p.robot].isLeaf() && cells[p.environment].isLeaf();
+    };
+    const auto leafDistance = [&](const NodePair &p, double best) {
+        const VolumeTree<Obb>::Node &rn = rNodes[p.robot];
+        const Octree::Cell &cell = cells[p.environment];
+        for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
         {
-            for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
+            const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
+            for (std::uint32_t j = 0; j < cell.triangleCount; ++j)
             {
-                const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
-                for (std::uint32_t j = 0; j < cell.triangleCount; ++j)
-                {
-                    const std::uint32_t et = references[cell.firstTriangle + j];
-                    ++triangleTests;
-                    best = std::min(best,
-                                    disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2],
-                                                             env.corner(et, 0), env.corner(et, 1), env.corner(et, 2)));
-                }
+                const std::uint32_t et = references[cell.firstTriangle + j];
+                ++triangleTests;
+                // doCollides answered free above: no pair of triangles meets.
+                best =
+                    std::min(best, disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
+                                                            env.corner(et, 1), env.corner(et, 2)));
             }
-            continue;
         }
-        children.clear();
-        const bool splitRobot = cell.isLeaf() || (!rn.isLeaf() && rn.radius >= cellRadius(cell));
-        if (splitRobot)
-            for (std::uint32_t k = 0; k < 2; ++k)
-            {
-                const NodePair p{std::uint32_t(rn.firstChild) + k, pair.environment};
-                children.push_back({p, lowerBound(p)});
-            }
-        else
-            for (std::uint32_t k = 0; k < cell.childCount; ++k)
-            {
-                const NodePair p{pair.robot, std::uint32_t(cell.firstChild) + k};
-                children.push_back({p, lowerBound(p)});
-            }
-        // Farthest pushed first, so the nearest is popped next.
-        std::sort(children.begin(), children.end(),
-                  [](const BoundedPair &x, const BoundedPair &y) { return x.bound > y.bound; });
-        for (const BoundedPair &c : children)
-            if (!(c.bound >= best))
-                stack.push(c);
-    }
+        return best;
+    };
+    // The robot node is split while it is larger than the cell (or the cell is a leaf).
+    const auto split = [&](const NodePair &p, NodePair *children) {
+        const VolumeTree<Obb>::Node &rn = rNodes[p.robot];
+        const Octree::Cell &cell = cells[p.environment];
+        if (cell.isLeaf() || (!rn.isLeaf() && rn.radius >= cellRadius(cell)))
+        {
+            children[0] = {std::uint32_t(rn.firstChild), p.environment};
+            children[1] = {std::uint32_t(rn.firstChild + 1), p.environment};
+            return 2;
+        }
+        for (std::uint32_t k = 0; k < cell.childCount; ++k)
+            children[k] = {p.robot, std::uint32_t(cell.firstChild) + k};
+        return int(cell.childCount);
+    };
+    const double best =
+        bestFirstDistance(context.scratch<NearestPairQueue>(), lowerBound, isLeafPair, leafDistance, split);
     context.stats.boundingVolumeTests += boxTests;
     context.stats.primitiveTests += triangleTests;
     return best;

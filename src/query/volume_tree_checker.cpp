@@ -5,6 +5,7 @@
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/narrowphase/linear_program.h"
+#include "hybridcd/query/best_first_distance.h"
 #include "hybridcd/query/leaf_decomposition.h"
 #include "hybridcd/query/placed_robot.h"
 #include "hybridcd/query/stamped_slots.h"
@@ -338,16 +339,14 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
     if (doCollides(worldFromRobot, context))
         return 0.0;
 
-    // Branch and bound: descend pairs whose box lower bound is below the best distance found yet,
-    // nearer pair first, so the bound tightens early.
+    // Branch and bound, nearest pair first (best_first_distance.h), on volume lower bounds.
     const double tolerance = toleranceFor(worldFromRobot);
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
     PlacedRobot<Volume> placed(robotTree_, worldFromRobot, context);
-    double best = std::numeric_limits<double>::infinity();
     std::uint64_t boxTests = 0, triangleTests = 0;
-    const auto lowerBound = [&](const NodePair &p) {
+    const auto lowerBound = [&](const NodePair &p, double best) {
         ++boxTests;
         const Volume &robotVolume = placed.volume(p.robot);
         const Volume &envVolume = eNodes[p.environment].volume;
@@ -359,62 +358,45 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
             return sphereGap;
         return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
-    // Each pair's bound is computed once, when it is pushed. Best first: once the nearest pair
-    // left is no nearer than the best distance, none is.
-    NearestPairQueue &queue = context.scratch<NearestPairQueue>();
-    queue.clear();
-    // The nearer child is taken next without a trip through the queue when nothing queued is nearer.
-    BoundedPair current{{0, 0}, lowerBound({0, 0})};
-    bool haveCurrent = true;
-    while (haveCurrent || !queue.empty())
-    {
-        if (!haveCurrent)
-            current = queue.pop();
-        haveCurrent = false;
-        const NodePair pair = current.pair;
-        const typename VolumeTree<Volume>::Node &rn = rNodes[pair.robot];
-        const typename VolumeTree<Volume>::Node &en = eNodes[pair.environment];
-        if (current.bound >= best)
-            break;
-        if (rn.isLeaf() && en.isLeaf())
+    const auto isLeafPair = [&](const NodePair &p) {
+        return rNodes[p.robot].isLeaf() && eNodes[p.environment].isLeaf();
+    };
+    const auto leafDistance = [&](const NodePair &p, double best) {
+        const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
+        const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
+        for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
         {
-            for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
+            const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
+            for (std::uint32_t j = 0; j < en.triangleCount; ++j)
             {
-                const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
-                for (std::uint32_t j = 0; j < en.triangleCount; ++j)
-                {
-                    const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
-                    ++triangleTests;
-                    // doCollides answered free above: no pair of triangles meets.
-                    best = std::min(best,
-                                    disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2],
-                                                             env.corner(et, 0), env.corner(et, 1), env.corner(et, 2)));
-                }
+                const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
+                ++triangleTests;
+                // doCollides answered free above: no pair of triangles meets.
+                best =
+                    std::min(best, disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
+                                                            env.corner(et, 1), env.corner(et, 2)));
             }
-            continue;
         }
-        const bool splitRobot = en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
-        const NodePair first = splitRobot ? NodePair{std::uint32_t(rn.firstChild), pair.environment}
-                                          : NodePair{pair.robot, std::uint32_t(en.firstChild)};
-        const NodePair second = splitRobot ? NodePair{std::uint32_t(rn.firstChild + 1), pair.environment}
-                                           : NodePair{pair.robot, std::uint32_t(en.firstChild + 1)};
-        BoundedPair nearer{first, lowerBound(first)}, farther{second, lowerBound(second)};
-        if (nearer.bound > farther.bound)
-            std::swap(nearer, farther);
-        // Pairs already beyond the best distance are dropped here rather than when popped.
-        if (!(farther.bound >= best))
-            queue.push(farther);
-        if (!(nearer.bound >= best))
+        return best;
+    };
+    // The larger node is split (the robot's when the environment's is a leaf).
+    const auto split = [&](const NodePair &p, NodePair *children) {
+        const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
+        const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
+        if (en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius))
         {
-            if (queue.empty() || nearer.bound <= queue.nearestBound())
-            {
-                current = nearer;
-                haveCurrent = true;
-            }
-            else
-                queue.push(nearer);
+            children[0] = {std::uint32_t(rn.firstChild), p.environment};
+            children[1] = {std::uint32_t(rn.firstChild + 1), p.environment};
         }
-    }
+        else
+        {
+            children[0] = {p.robot, std::uint32_t(en.firstChild)};
+            children[1] = {p.robot, std::uint32_t(en.firstChild + 1)};
+        }
+        return 2;
+    };
+    const double best =
+        bestFirstDistance(context.scratch<NearestPairQueue>(), lowerBound, isLeafPair, leafDistance, split);
     context.stats.boundingVolumeTests += boxTests;
     context.stats.primitiveTests += triangleTests;
     return best;

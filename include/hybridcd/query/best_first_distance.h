@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Best-first branch and bound for the distance between two hierarchies: the one search behind
+// every tree checker's clearance (volume trees, the octree), whatever their volumes and fan-out.
+#pragma once
+
+#include "hybridcd/query/traversal_stack.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace hcd
+{
+/// The most children one split of a node pair yields (an octree cell has eight).
+inline constexpr int kMaxPairChildren = 8;
+
+/// The smallest distance between the contents of the root pair {0, 0}, or +infinity if every leaf
+/// pair lies beyond it. Expands only pairs whose bound is below the best distance found yet, and
+/// stops at the first pair whose bound reaches it, so it is exact whenever the bounds are lower
+/// bounds:
+/// - `bound(pair, best)`: a lower bound on the distance between the pair's contents; it may return
+///   any value >= best once it knows the pair is beyond best (a cheap early out);
+/// - `leafDistance(pair, best)`: for a pair of leaves, the smaller of best and their contents' exact
+///   distance;
+/// - `split(pair, children)`: for any other pair, writes its child pairs (at most kMaxPairChildren)
+///   and returns their number; only called when the pair is not a pair of leaves;
+/// - `isLeafPair(pair)`.
+/// The nearest child goes on directly, without a trip through the queue, when nothing queued is
+/// nearer. `queue` is scratch from the caller's query context.
+template <class Bound, class IsLeafPair, class LeafDistance, class Split>
+double bestFirstDistance(NearestPairQueue &queue, Bound &&bound, IsLeafPair &&isLeafPair, LeafDistance &&leafDistance,
+                         Split &&split)
+{
+    double best = std::numeric_limits<double>::infinity();
+    queue.clear();
+    BoundedPair current{{0, 0}, bound(NodePair{0, 0}, best)};
+    bool haveCurrent = true;
+    NodePair children[kMaxPairChildren];
+    while (haveCurrent || !queue.empty())
+    {
+        if (!haveCurrent)
+            current = queue.pop();
+        haveCurrent = false;
+        if (current.bound >= best)
+            break;  // the nearest pair left is no nearer than the best: none is
+        if (isLeafPair(current.pair))
+        {
+            best = leafDistance(current.pair, best);
+            continue;
+        }
+        const int count = split(current.pair, children);
+        // Each child's bound once; the nearest is kept aside, the rest queued unless already beyond.
+        BoundedPair nearest{{0, 0}, std::numeric_limits<double>::infinity()};
+        bool haveNearest = false;
+        for (int k = 0; k < count; ++k)
+        {
+            BoundedPair child{children[k], bound(children[k], best)};
+            if (child.bound >= best)
+                continue;
+            if (!haveNearest || child.bound < nearest.bound)
+            {
+                if (haveNearest)
+                    queue.push(nearest);
+                nearest = child;
+                haveNearest = true;
+            }
+            else
+                queue.push(child);
+        }
+        if (!haveNearest)
+            continue;
+        if (queue.empty() || nearest.bound <= queue.nearestBound())
+        {
+            current = nearest;
+            haveCurrent = true;
+        }
+        else
+            queue.push(nearest);
+    }
+    return best;
+}
+}  // namespace hcd
