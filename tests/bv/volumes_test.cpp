@@ -4,8 +4,10 @@
 // against brute references (points sampled densely inside the volumes, exact point-set distances).
 #include "support/test_support.h"
 
+#include "hybridcd/bv/principal_axis.h"
 #include "hybridcd/bvh/volume_traits.h"
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -241,4 +243,42 @@ TEST(Volumes, RotatedKdopHoldsTheExactOneAndIsExactOnSymmetries)
         EXPECT_NEAR(moved.lo[i], exact.lo[i], 1e-8) << i;
         EXPECT_NEAR(moved.hi[i], exact.hi[i], 1e-8) << i;
     }
+}
+
+// The split axis against a two-pass covariance and Eigen's iterative solver (the reference), on
+// clouds with one clearly largest spread, far from the origin and at small and large scales; and
+// on a large cloud, where the axis comes from a regular sample.
+TEST(PrincipalAxis, MatchesTwoPassCovarianceOnElongatedClouds)
+{
+    test::TestRandom rng(test::seeded(4242));
+    for (double scale : {1e-6, 1.0, 1e6})
+        for (std::size_t count : {std::size_t(3), std::size_t(50), std::size_t(20000)})
+            for (int trial = 0; trial < 20; ++trial)
+            {
+                const Mat3 r = test::randomRotation(rng);
+                const Vec3 offset =
+                    1000.0 * scale * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+                std::vector<Vec3> points(count);
+                for (Vec3 &p : points)
+                    p = offset + scale * (r * Vec3(uniform(rng, -4, 4), uniform(rng, -1, 1), uniform(rng, -0.5, 0.5)));
+                Vec3 mean = Vec3::Zero();
+                for (const Vec3 &p : points)
+                    mean += p;
+                mean /= double(count);
+                Mat3 covariance = Mat3::Zero();
+                for (const Vec3 &p : points)
+                    covariance += (p - mean) * (p - mean).transpose();
+                const Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);
+                const Vec3 reference = solver.eigenvectors().col(2).normalized();
+                const Vec3 axis = principalAxis(points);
+                EXPECT_NEAR(axis.norm(), 1.0, 1e-12);
+                // Three points can spread alike in two directions; otherwise the axes agree closely.
+                if (count > 3)
+                    EXPECT_GT(std::fabs(axis.dot(reference)), 0.99) << "scale " << scale << ", " << count << " points";
+                // The axis always follows the cloud's long side more than its short ones.
+                if (count > 3)
+                    EXPECT_GT(std::fabs(axis.dot(r.col(0))), 0.9) << "scale " << scale << ", " << count << " points";
+            }
+    EXPECT_EQ(principalAxis({}), Vec3::UnitX());
+    EXPECT_NEAR(principalAxis(std::vector<Vec3>(5, Vec3(1, 2, 3))).norm(), 1.0, 1e-12);
 }
