@@ -377,9 +377,15 @@ struct Solid
 };
 }  // namespace
 
-std::vector<MeshComponent> meshComponents(const TriangleMesh &mesh)
+namespace
 {
-    const std::vector<std::uint32_t> canonical = canonicalVertices(mesh);
+using FaceList = std::vector<std::pair<Triangle, std::uint32_t>>;
+
+// The components of `mesh` given its canonical vertices; `closedFaces`, if given, receives the
+// distinct faces of each component (empty for open ones), which the closedness test sorts anyway.
+std::vector<MeshComponent> componentsOf(const TriangleMesh &mesh, const std::vector<std::uint32_t> &canonical,
+                                        std::vector<FaceList> *closedFaces)
+{
     UnionFind sets(mesh.vertices.size());
     for (const Triangle &t : mesh.triangles)
     {
@@ -401,9 +407,22 @@ std::vector<MeshComponent> meshComponents(const TriangleMesh &mesh)
         for (int k = 0; k < 3; ++k)
             c.bounds.extend(mesh.corner(i, k));
     }
-    for (MeshComponent &c : components)
-        c.closed = everyEdgeEven(distinctFaces(mesh, canonical, c.triangles));
+    if (closedFaces)
+        closedFaces->assign(components.size(), {});
+    for (std::size_t k = 0; k < components.size(); ++k)
+    {
+        FaceList faces = distinctFaces(mesh, canonical, components[k].triangles);
+        components[k].closed = everyEdgeEven(faces);
+        if (closedFaces && components[k].closed)
+            (*closedFaces)[k] = std::move(faces);
+    }
     return components;
+}
+}  // namespace
+
+std::vector<MeshComponent> meshComponents(const TriangleMesh &mesh)
+{
+    return componentsOf(mesh, canonicalVertices(mesh), nullptr);
 }
 
 struct SolidQuery::Index
@@ -464,16 +483,19 @@ SolidQuery::SolidQuery(std::shared_ptr<const TriangleMesh> mesh) : mesh_(std::mo
     if (!mesh_)
         throw std::invalid_argument("SolidQuery: null mesh");
     auto index = std::make_shared<Index>();
-    index->components = meshComponents(*mesh_);
+    // The canonical vertices and each closed component's distinct faces are found once, for both
+    // the components and their solids.
+    std::vector<FaceList> closedFaces;
+    index->components = componentsOf(*mesh_, canonicalVertices(*mesh_), &closedFaces);
     index->solidOfComponent.assign(index->components.size(), -1);
-    const std::vector<std::uint32_t> canonical = canonicalVertices(*mesh_);
     for (std::uint32_t c = 0; c < index->components.size(); ++c)
     {
         const MeshComponent &component = index->components[c];
         if (!component.closed)
             continue;
         index->solidOfComponent[c] = std::int64_t(index->solids.size());
-        index->solids.emplace_back(*mesh_, c, component, distinctFaces(*mesh_, canonical, component.triangles));
+        index->solids.emplace_back(*mesh_, c, component, closedFaces[c]);
+        FaceList().swap(closedFaces[c]);  // the solid keeps its own copy of what it needs
     }
     index->buildSolidGrid();
     index_ = std::move(index);

@@ -3,6 +3,7 @@
 
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
+#include "hybridcd/query/solid_semantics_checker.h"
 
 #include <algorithm>
 
@@ -33,8 +34,11 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     indexLeafTriangles();
     if (solid_)
     {
-        const SolidQuery environmentSolids(environment.mesh);
-        const SolidQuery robotSolids(robot.mesh);
+        // The solid wrapper's indexes when the exact checker is one (as the catalogue makes it):
+        // the same solids, found once.
+        const auto *wrapper = dynamic_cast<const SolidSemanticsChecker *>(exact_.get());
+        const SolidQuery environmentSolids = wrapper ? wrapper->environmentSolids() : SolidQuery(environment.mesh);
+        const SolidQuery robotSolids = wrapper ? wrapper->robotSolids() : SolidQuery(robot.mesh);
         robotHasSolids_ = robotSolids.closedComponentCount() > 0;
         environmentHasSolids_ = environmentSolids.closedComponentCount() > 0;
         if (robotHasSolids_)
