@@ -171,23 +171,42 @@ const std::array<Vec3, K / 2> &kdopDirections()
 }
 
 template <int K>
-KDop<K> KDop<K>::fit(const std::vector<Vec3> &points)
+KDop<K> KDop<K>::tight(const std::vector<Vec3> &points)
 {
     const auto &dirs = kdopDirections<K>();
     KDop d;
     d.lo.fill(std::numeric_limits<double>::infinity());
     d.hi.fill(-std::numeric_limits<double>::infinity());
-    double magnitude = 0.0;
     for (const Vec3 &p : points)
-    {
-        magnitude = std::max(magnitude, p.cwiseAbs().maxCoeff());
         for (int i = 0; i < kSlabs; ++i)
         {
             const double s = dirs[i].dot(p);
             d.lo[i] = std::min(d.lo[i], s);
             d.hi[i] = std::max(d.hi[i], s);
         }
+    return d;
+}
+
+template <int K>
+KDop<K> KDop<K>::tightUnion(const KDop &a, const KDop &b)
+{
+    KDop d;
+    for (int i = 0; i < kSlabs; ++i)
+    {
+        d.lo[i] = std::min(a.lo[i], b.lo[i]);
+        d.hi[i] = std::max(a.hi[i], b.hi[i]);
     }
+    return d;
+}
+
+template <int K>
+KDop<K> KDop<K>::withMargin(KDop d)
+{
+    // The first three directions are the axes, exactly: their slabs are the points' extreme
+    // coordinates, so this is the largest coordinate magnitude of the points.
+    double magnitude = 0.0;
+    for (int i = 0; i < 3; ++i)
+        magnitude = std::max({magnitude, std::fabs(d.lo[i]), std::fabs(d.hi[i])});
     const double margin = 1e-9 * magnitude + 1e-300;
     for (int i = 0; i < kSlabs; ++i)
     {
@@ -196,6 +215,12 @@ KDop<K> KDop<K>::fit(const std::vector<Vec3> &points)
     }
     d.center = 0.5 * Vec3(d.lo[0] + d.hi[0], d.lo[1] + d.hi[1], d.lo[2] + d.hi[2]);
     return d;
+}
+
+template <int K>
+KDop<K> KDop<K>::fit(const std::vector<Vec3> &points)
+{
+    return withMargin(tight(points));
 }
 
 template <int K>

@@ -110,3 +110,62 @@ TEST(ObbOverlap, NeverMissesOverlapFoundBySampling)
     EXPECT_GT(overlaps, 300);
     EXPECT_GT(disjoint, 300);
 }
+
+// k-DOP trees build each parent from its children's slabs: every node's volume is still fit() of
+// its subtree's corners, bit for bit, on a random soup and on flat meshes at three scales.
+template <int K>
+void expectKDopNodesEqualTheirFit(const VolumeTree<KDop<K>> &tree)
+{
+    expectContainsSubtree(tree, [](const KDop<K> &d, const Vec3 &p) { return d.contains(p); });
+    for (const auto &n : tree.nodes())
+    {
+        std::vector<Vec3> corners;
+        for (std::uint32_t k = 0; k < n.triangleCount; ++k)
+            for (int c = 0; c < 3; ++c)
+                corners.push_back(tree.mesh().corner(tree.triangleOrder()[n.firstTriangle + k], c));
+        const KDop<K> fitted = KDop<K>::fit(corners);
+        ASSERT_EQ(n.volume.lo, fitted.lo);
+        ASSERT_EQ(n.volume.hi, fitted.hi);
+        ASSERT_EQ(n.volume.center, fitted.center);
+        ASSERT_EQ(n.radius, VolumeTraits<KDop<K>>::radius(fitted));
+    }
+}
+
+TEST(KDopTree, NodesEqualTheFitOfTheirSubtree)
+{
+    test::TestRandom rng(test::seeded(77));
+    std::vector<std::shared_ptr<TriangleMesh>> meshes;
+    {
+        std::uniform_real_distribution<double> u(-10, 10), s(-0.5, 0.5);
+        auto soup = std::make_shared<TriangleMesh>();
+        for (int t = 0; t < 3000; ++t)
+        {
+            const Vec3 c(u(rng), u(rng), u(rng));
+            for (int k = 0; k < 3; ++k)
+                soup->vertices.push_back(c + Vec3(s(rng), s(rng), s(rng)));
+            soup->triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
+        }
+        meshes.push_back(soup);
+    }
+    for (double scale : {1e-6, 1.0, 1e9})
+    {
+        auto flat = std::make_shared<TriangleMesh>();
+        for (int i = 0; i < 40; ++i)
+            for (int j = 0; j < 40; ++j)
+                flat->vertices.push_back(scale * Vec3(i, j, 0.0) + Vec3(3e3 * scale, -7e2 * scale, 0));
+        for (std::uint32_t i = 0; i + 1 < 40; ++i)
+            for (std::uint32_t j = 0; j + 1 < 40; ++j)
+            {
+                flat->triangles.push_back({i * 40 + j, (i + 1) * 40 + j, i * 40 + j + 1});
+                flat->triangles.push_back({(i + 1) * 40 + j, (i + 1) * 40 + j + 1, i * 40 + j + 1});
+            }
+        meshes.push_back(flat);
+    }
+    for (const auto &mesh : meshes)
+        for (unsigned leaf : {1u, 3u})
+        {
+            expectKDopNodesEqualTheirFit(VolumeTree<KDop<14>>(mesh, leaf));
+            expectKDopNodesEqualTheirFit(VolumeTree<KDop<18>>(mesh, leaf));
+            expectKDopNodesEqualTheirFit(VolumeTree<KDop<26>>(mesh, leaf));
+        }
+}

@@ -26,6 +26,14 @@ struct KDop
     /// rounding leaves no point outside. `points` must not be empty.
     static KDop fit(const std::vector<Vec3> &points);
 
+    /// fit() in steps, for a hierarchy that builds a parent from its children without revisiting
+    /// their points: the exact slabs of `points` (no margin, no centre); the exact slabs of the
+    /// union of two such; and the margin and centre added last. withMargin(tight(points)) is
+    /// fit(points) bit for bit, and so is withMargin(tightUnion(tight(p), tight(q))) for p and q's union.
+    static KDop tight(const std::vector<Vec3> &points);
+    static KDop tightUnion(const KDop &a, const KDop &b);
+    static KDop withMargin(KDop tight);
+
     /// True when `p` satisfies every slab (inclusive).
     bool contains(const Vec3 &p) const;
 

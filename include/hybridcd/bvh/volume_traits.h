@@ -274,6 +274,10 @@ struct VolumeTraits<KDop<K>>
     using Volume = KDop<K>;
     static constexpr const char *kName = K == 14 ? "14-DOP" : K == 18 ? "18-DOP" : "26-DOP";
     static Volume fit(const std::vector<Vec3> &points) { return Volume::fit(points); }
+    // Built bottom-up by VolumeTree: tight slabs at the leaves, unions above, margins last.
+    static Volume tight(const std::vector<Vec3> &points) { return Volume::tight(points); }
+    static Volume tightUnion(const Volume &a, const Volume &b) { return Volume::tightUnion(a, b); }
+    static Volume withMargin(const Volume &v) { return Volume::withMargin(v); }
     static Vec3 splitAxis(const Volume &, const std::vector<Vec3> &points) { return principalAxis(points); }
     static const Vec3 &center(const Volume &d) { return d.center; }
     /// Half the diagonal of the box slabs, about their centre: the box holds the polytope.

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A binary bounding-volume hierarchy over the triangles of one mesh, for any volume type.
 //
-// Build: top-down. Each node's volume is fitted to the corners of its triangles (VolumeTraits<V>::fit).
+// Build: top-down. Each node's volume is fitted to the corners of its triangles (VolumeTraits<V>::fit),
+// or, for k-DOPs, bottom-up: tight slabs at the leaves, each parent the union of its children's,
+// and fit()'s margin added last, which gives the same volumes without revisiting the corners.
 // The node's triangles are split across the volume's split axis (its longest direction, or the
 // principal axis of the corners for volumes without one) at the mean
 // of their centroids (Gottschalk's rule); if every centroid lands on one side, at the median
@@ -18,6 +20,8 @@
 #include <cstdint>
 #include <memory>
 #include <numeric>
+#include <type_traits>
+#include <utility>
 
 namespace hcd
 {
@@ -56,6 +60,12 @@ public:
         nodes_.emplace_back();
         std::vector<Vec3> scratch;
         build(0, 0, std::uint32_t(n), 1, centroids, scratch);
+        if constexpr (kMergeable)
+            for (Node &node : nodes_)
+            {
+                node.volume = Traits::withMargin(node.volume);
+                node.radius = Traits::radius(node.volume);
+            }
         buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 
@@ -96,19 +106,35 @@ private:
                const std::vector<Vec3> &centroids, std::vector<Vec3> &scratch)
     {
         depth_ = std::max(depth_, level);
-        scratch.clear();
-        for (std::uint32_t i = begin; i < end; ++i)
-            for (int k = 0; k < 3; ++k)
-                scratch.push_back(mesh_->corner(order_[i], k));
         Node &self = nodes_[node];
-        self.volume = Traits::fit(scratch);
-        self.radius = Traits::radius(self.volume);
         self.firstTriangle = begin;
         self.triangleCount = end - begin;
-        if (end - begin <= maxLeafTriangles_)
-            return;
+        const bool leaf = end - begin <= maxLeafTriangles_;
+        Vec3 axis;
+        if constexpr (kMergeable)
+        {
+            // Inner nodes are merged from their children below, so only leaves visit their
+            // corners; the split axis needs the same regular sample principalAxis() would take.
+            if (leaf)
+            {
+                gatherCorners(begin, end, 1, scratch);
+                self.volume = Traits::tight(scratch);  // margins and radii once the tree is built
+                return;
+            }
+            const std::size_t corners = 3 * std::size_t(end - begin);
+            gatherCorners(begin, end, corners > kAxisSamples ? corners / kAxisSamples : 1, scratch);
+            axis = principalAxis(scratch);
+        }
+        else
+        {
+            gatherCorners(begin, end, 1, scratch);
+            self.volume = Traits::fit(scratch);
+            self.radius = Traits::radius(self.volume);
+            if (leaf)
+                return;
+            axis = Traits::splitAxis(self.volume, scratch);
+        }
 
-        const Vec3 axis = Traits::splitAxis(self.volume, scratch);
         double mean = 0.0;
         for (std::uint32_t i = begin; i < end; ++i)
             mean += axis.dot(centroids[order_[i]]);
@@ -129,7 +155,33 @@ private:
         nodes_.emplace_back();
         build(left, begin, split, level + 1, centroids, scratch);
         build(left + 1, split, end, level + 1, centroids, scratch);
+        if constexpr (kMergeable)
+            nodes_[node].volume = Traits::tightUnion(nodes_[left].volume, nodes_[left + 1].volume);
     }
+
+    // Every `stride`-th corner of the triangles order_[begin, end), in order.
+    void gatherCorners(std::uint32_t begin, std::uint32_t end, std::size_t stride, std::vector<Vec3> &out) const
+    {
+        out.clear();
+        const std::size_t corners = 3 * std::size_t(end - begin);
+        for (std::size_t i = 0; i < corners; i += stride)
+            out.push_back(mesh_->corner(order_[begin + i / 3], int(i % 3)));
+    }
+
+    // Volumes whose parent is the union of its children's (k-DOPs: tight slabs, a margin last);
+    // they split along the corners' principal axis, as their splitAxis() does.
+    template <class T, class = void>
+    struct HasTightUnion : std::false_type
+    {
+    };
+    template <class T>
+    struct HasTightUnion<
+        T, std::void_t<decltype(T::tightUnion(std::declval<const Volume &>(), std::declval<const Volume &>()))>>
+        : std::true_type
+    {
+    };
+    static constexpr bool kMergeable = HasTightUnion<Traits>::value;
+    static constexpr std::size_t kAxisSamples = 4096;  // as principalAxis() samples
 
     std::shared_ptr<const TriangleMesh> mesh_;
     unsigned maxLeafTriangles_;
