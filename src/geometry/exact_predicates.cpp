@@ -18,10 +18,10 @@ std::atomic<unsigned long long> fallbackCount{0};
 
 // Shewchuk's bounds are (7 + 56 eps) eps and (3 + 16 eps) eps with eps = 2^-53; we round up
 // generously, which only sends slightly more cases to the exact path.
-constexpr double kOrient3dErrorBound = 1.0e-15;
+constexpr double kOrient3dErrorBound = PlaneOrientationFilter::kRelativeError;
 constexpr double kOrient2dErrorBound = 4.0e-16;
 // Below this the filter's products may be denormal and the bound is no longer valid.
-constexpr double kTinyPermanent = 1.0e-250;
+constexpr double kTinyPermanent = PlaneOrientationFilter::kTinyPermanent;
 
 int sign(const Rational &r) { return r.sign(); }
 
@@ -86,6 +86,21 @@ int orient3d(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
         if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
             return 0;
     return orient3dExact(a, b, c, d);
+}
+
+PlaneOrientationFilter::PlaneOrientationFilter(const Vec3 &a, const Vec3 &b, const Vec3 &c) : origin_(a)
+{
+    const double bx = b.x() - a.x(), by = b.y() - a.y(), bz = b.z() - a.z();
+    const double cx = c.x() - a.x(), cy = c.y() - a.y(), cz = c.z() - a.z();
+    const double m1 = by * cz, m2 = bz * cy, m3 = bz * cx, m4 = bx * cz, m5 = bx * cy, m6 = by * cx;
+    normal_ = Vec3(m1 - m2, m3 - m4, m5 - m6);
+    magnitude_ = Vec3(std::fabs(m1) + std::fabs(m2), std::fabs(m3) + std::fabs(m4), std::fabs(m5) + std::fabs(m6));
+    // A product of two differences of at least 2^-484 each (or with a zero factor) stays normal:
+    // the cheap test orient3d()'s finer one (productUnderflows) implies. Tinier differences leave
+    // the filter unusable and orient3d() decides.
+    constexpr double kSmallestFactor = 0x1p-484;
+    const auto fine = [](double v) { return v == 0.0 || std::fabs(v) >= kSmallestFactor; };
+    usable_ = magnitude_.allFinite() && fine(bx) && fine(by) && fine(bz) && fine(cx) && fine(cy) && fine(cz);
 }
 
 int orient2d(double ax, double ay, double bx, double by, double cx, double cy)

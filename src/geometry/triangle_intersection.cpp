@@ -124,13 +124,26 @@ bool segmentIntersectsTriangle(const Vec3 &p, const Vec3 &q, const Vec3 &a, cons
 
 bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
 {
-    // Plane rejection first: it settles the vast majority of pairs, most of them in floating point.
-    if (separatedByPlane(a0, a1, a2, b0, b1, b2) || separatedByPlane(b0, b1, b2, a0, a1, a2))
+    // Plane rejection first: it settles the vast majority of pairs in floating point. The signs the
+    // filter certifies are orient3d()'s; only the others take the predicate's own path.
+    int sb[3], sa[3];
+    const PlaneOrientationFilter planeA(a0, a1, a2);
+    if (filteredSides(planeA, b0, b1, b2, sb))
         return false;
-    const int sb0 = orient3d(a0, a1, a2, b0), sb1 = orient3d(a0, a1, a2, b1), sb2 = orient3d(a0, a1, a2, b2);
+    const PlaneOrientationFilter planeB(b0, b1, b2);
+    if (filteredSides(planeB, a0, a1, a2, sa))
+        return false;
+    const Vec3 *b[3] = {&b0, &b1, &b2}, *a[3] = {&a0, &a1, &a2};
+    for (int i = 0; i < 3; ++i)
+        if (sb[i] == 0)
+            sb[i] = orient3d(a0, a1, a2, *b[i]);
+    const int sb0 = sb[0], sb1 = sb[1], sb2 = sb[2];
     if ((sb0 > 0 && sb1 > 0 && sb2 > 0) || (sb0 < 0 && sb1 < 0 && sb2 < 0))
         return false;
-    const int sa0 = orient3d(b0, b1, b2, a0), sa1 = orient3d(b0, b1, b2, a1), sa2 = orient3d(b0, b1, b2, a2);
+    for (int i = 0; i < 3; ++i)
+        if (sa[i] == 0)
+            sa[i] = orient3d(b0, b1, b2, *a[i]);
+    const int sa0 = sa[0], sa1 = sa[1], sa2 = sa[2];
     if ((sa0 > 0 && sa1 > 0 && sa2 > 0) || (sa0 < 0 && sa1 < 0 && sa2 < 0))
         return false;
 
