@@ -101,7 +101,7 @@ std::string describe(std::initializer_list<Vec3> points)
 struct Tally
 {
     std::string name;
-    long cases = 0, zero = 0, mismatches = 0;
+    long cases = 0, zero = 0, mismatches = 0, certified = 0;
 
     void orient3d(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &d)
     {
@@ -111,6 +111,12 @@ struct Tally
         if (got != expected && ++mismatches <= 5)
             ADD_FAILURE() << name << ": orient3d gives " << got << ", exact sign " << expected << " for "
                           << describe({a, b, c, d});
+        // The filter alone (one normal per plane): a sign it certifies is the exact one.
+        const int filtered = hcd::PlaneOrientationFilter(a, b, c).side(d);
+        if (filtered != 0 && filtered != expected && ++mismatches <= 5)
+            ADD_FAILURE() << name << ": PlaneOrientationFilter certifies " << filtered << ", exact sign " << expected
+                          << " for " << describe({a, b, c, d});
+        certified += filtered != 0 ? 1 : 0;
     }
 
     void orient2d(double ax, double ay, double bx, double by, double cx, double cy)
@@ -126,7 +132,10 @@ struct Tally
     ~Tally()
     {
         std::cout << "[ category ] " << name << ": " << cases << " cases, " << zero << " exactly zero, " << mismatches
-                  << " mismatches" << std::endl;
+                  << " mismatches";
+        if (name.rfind("orient3d", 0) == 0)
+            std::cout << ", " << certified << " settled by the plane filter alone";
+        std::cout << std::endl;
         EXPECT_EQ(mismatches, 0) << name;
     }
 };
