@@ -191,14 +191,18 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
 
-    // A pass of collision checks at OMPL's resolution from s1 onwards: the first contact then only
-    // needs to be searched for before the first colliding sample.
+    // Without a known contact, a pass of collision checks at OMPL's resolution from s1 onwards: the
+    // first contact then only needs to be searched for before the first colliding sample. With one
+    // (the verdict's raked contact), the pass is skipped: certification goes through the prefix in
+    // order anyway, checks the middle of every interval it cannot certify, and closes on the first
+    // contact it meets, so the pass only repeated those checks (lastValid 10-17% cheaper on Maze and
+    // Home, bench/README.md section 3).
     const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
     double end = 1.0;  // the search for the first contact stops here
     bool contactKnown = knownContact <= 1.0;
     if (contactKnown)
         end = knownContact;  // only samples before it can hold an earlier contact
-    for (unsigned k = 1; k <= n && double(k) / n < end; ++k)
+    for (unsigned k = 1; !contactKnown && k <= n && double(k) / n < end; ++k)
         if (validity_->poseCollides(poseAt(double(k) / n), *context))
         {
             end = double(k) / n;
