@@ -195,8 +195,8 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     // first contact then only needs to be searched for before the first colliding sample. With one
     // (the verdict's raked contact), the pass is skipped: certification goes through the prefix in
     // order anyway, checks the middle of every interval it cannot certify, and closes on the first
-    // contact it meets, so the pass only repeated those checks (lastValid 10-17% cheaper on Maze and
-    // Home, bench/README.md section 3).
+    // contact it meets, so the pass mostly repeated those checks (lastValid 10% cheaper on Maze,
+    // level elsewhere within the noise; bench/README.md section 3).
     const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
     double end = 1.0;  // the search for the first contact stops here
     bool contactKnown = knownContact <= 1.0;
