@@ -107,7 +107,9 @@ bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double t
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     const auto clears = [&](const CoverSphere &s) {
         const ClearanceSample sample = grid_.at(worldFromRobot.apply(s.center));
-        const double slack = translationSlack + radialSlack * (s.center.norm() + s.radius);
+        // Points of the sphere lie within |c| + r of the robot's origin (no square root for a state).
+        const double slack =
+            radialSlack > 0.0 ? translationSlack + radialSlack * (s.center.norm() + s.radius) : translationSlack;
         return sample.clearance > s.radius + slack + rounding && (!solid_ || sample.outside);
     };
     // The root sphere holds the whole robot, solid included (a ball is convex): when it clears the
