@@ -236,18 +236,6 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-ClearanceGrid::CellPoint ClearanceGrid::locate(const Vec3 &p) const
-{
-    const Vec3 f = (p - origin_) * inverseCellSize_;
-    CellPoint c;
-    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < nx_ && f.y() < ny_ && f.z() < nz_))
-        return c;
-    const std::size_t ix = std::size_t(f.x()), iy = std::size_t(f.y()), iz = std::size_t(f.z());
-    c.index = std::int64_t((iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix);
-    c.offCentre = (f - Vec3(double(ix) + 0.5, double(iy) + 0.5, double(iz) + 0.5)).norm();
-    return c;
-}
-
 std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
 {
     if (occupiedMask_.empty())
@@ -263,39 +251,4 @@ std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
     return occupiedTriangle_[occupiedBefore_[i / 64] + std::size_t(__builtin_popcountll(word & (bit - 1)))];
 }
 
-ClearanceSample ClearanceGrid::at(const Vec3 &p) const
-{
-    ClearanceSample s;
-    if (cellBytes_.empty())
-    {
-        s.clearance = s.markerClearance = std::numeric_limits<double>::infinity();
-        s.outside = true;
-        return s;
-    }
-    const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
-    const CellPoint cell = locate(p);
-    if (cell.index < 0)
-    {
-        // Beyond the grid: the mesh's bounding box bounds everything, solids and markers included.
-        const Vec3 gap = (meshMin_ - p).cwiseMax(p - meshMax_).cwiseMax(Vec3::Zero());
-        const double d = gap.norm() * (1.0 - 1e-12) - slack;  // NaN stays "unknown"
-        s.clearance = d > 0.0 ? d : 0.0;
-        s.outside = d > 0.0;
-        s.markerClearance = hasMarkers_ ? s.clearance : std::numeric_limits<double>::infinity();
-        return s;
-    }
-    const auto i = std::size_t(cell.index);
-    const std::uint8_t code = cellBytes_[i * stride_];
-    if (code != 0)
-    {
-        const bool inside = code >= 128;
-        // Less p's own distance from its cell's centre (its rounding is within `slack`).
-        s.clearance = std::max(0.0, ((inside ? code - 128 : code - 1) * 0.5 - cell.offCentre) * cellSize_ - slack);
-        s.inside = labelled_ && inside;
-        s.outside = labelled_ && !inside;
-    }
-    s.markerClearance = hasMarkers_ ? std::max(0.0, cellBytes_[i * 2 + 1] * cellSize_ - slack)
-                                    : std::numeric_limits<double>::infinity();
-    return s;
-}
 }  // namespace hcd
