@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Pictures of problems with verified paths: for each .cfg, NAME.png in OUT_DIR with the first of
 #   1. the path shipped beside the .cfg (NAME.path, as OMPL.app ships them), when hybridcd verifies it;
-#   2. OUT_DIR/NAME.path left by an earlier run (or put there by hand), when hybridcd verifies it;
+#   2. OUT_DIR/NAME.path left by an earlier run (or put there by hand, with a first line
+#      "# source: ..." saying how it was made), when hybridcd verifies it;
 #   3. a path solved by `hybridcd solve` into OUT_DIR/NAME.path, trying the problem's planners in turn.
 # OUT_DIR/index.md lists every problem with its picture and where its path came from.
 # Verified: every pose collision-free (`check`) and, for geometric problems, every motion between
@@ -18,7 +19,7 @@
 #   $RENDER_WIDTH and $RENDER_HEIGHT set the pictures' size in pixels (default 800 x 600).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-[ $# -ge 1 ] || { sed -n 3,15p "$0" >&2; exit 1; }
+[ $# -ge 1 ] || { sed -n 3,16p "$0" >&2; exit 1; }
 out=$1
 shift
 cli=${HYBRIDCD_CLI:-$root/build/hybridcd}
@@ -114,7 +115,9 @@ for cfg in "${problems[@]}"; do
   if [ -z "$path" ] && [ -f "$earlier" ] && [ "$earlier" != "$shipped" ]; then
     if verdict=$(verify_path "$cfg" "$earlier" "$kinodynamic"); then
       path=$earlier
-      note="${note}path $earlier (from an earlier run), verified: $verdict"
+      # A path put there by hand says where it came from on a first line "# source: ...".
+      origin=$(sed -n '1s/^# source: //p' "$earlier")
+      note="${note}path $earlier (${origin:-from an earlier run}), verified: $verdict"
     else
       note="${note}earlier path $earlier rejected ($verdict); "
     fi
