@@ -321,6 +321,18 @@ TEST(RenderCli, ScriptDrawsEveryProblemWithASolvedPath)
     const Decoded small = decodePng(folder + "/corridor_2d.png");
     EXPECT_EQ(small.width, 200);
     EXPECT_EQ(small.height, 150);
+    // A path placed by hand says how it was made on its first line; the index repeats it.
+    {
+        std::ifstream in(folder + "/corridor_2d.path");
+        std::stringstream poses;
+        poses << in.rdbuf();
+        std::ofstream(folder + "/corridor_2d.path") << "# source: placed by hand for this test\n" << poses.str();
+    }
+    const CliRun byHand = test::runShell("HYBRIDCD_CLI=" + std::string(HYBRIDCD_CLI) + " bash " +
+                                         test::sourcePath("scripts/render_problems.sh") + " " + folder + " " +
+                                         test::sourcePath("problems/corridor_2d.cfg"));
+    ASSERT_EQ(byHand.status, 0) << byHand.output;
+    EXPECT_NE(byHand.output.find("(placed by hand for this test), verified:"), std::string::npos) << byHand.output;
     // A problem that cannot be loaded is reported, and the script fails.
     const CliRun bad =
         test::runShell("HYBRIDCD_CLI=" + std::string(HYBRIDCD_CLI) + " bash " +
