@@ -211,23 +211,13 @@ double OctreeChecker::doDistance(const RigidTransform &worldFromRobot, QueryCont
     const auto isLeafPair = [&](const NodePair &p) {
         return rNodes[p.robot].isLeaf() && cells[p.environment].isLeaf();
     };
+    // doCollides answered free above: no pair of triangles meets.
     const auto leafDistance = [&](const NodePair &p, double best) {
         const VolumeTree<Obb>::Node &rn = rNodes[p.robot];
         const Octree::Cell &cell = cells[p.environment];
-        for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
-        {
-            const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
-            for (std::uint32_t j = 0; j < cell.triangleCount; ++j)
-            {
-                const std::uint32_t et = references[cell.firstTriangle + j];
-                ++triangleTests;
-                // doCollides answered free above: no pair of triangles meets.
-                best =
-                    std::min(best, disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
-                                                            env.corner(et, 1), env.corner(et, 2)));
-            }
-        }
-        return best;
+        return leafTrianglesDistance(placed, robotTree_.triangleOrder().data() + rn.firstTriangle, rn.triangleCount,
+                                     env, references.data() + cell.firstTriangle, cell.triangleCount, best,
+                                     triangleTests);
     };
     // The robot node is split while it is larger than the cell (or the cell is a leaf).
     const auto split = [&](const NodePair &p, NodePair *children) {

@@ -361,23 +361,13 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
     const auto isLeafPair = [&](const NodePair &p) {
         return rNodes[p.robot].isLeaf() && eNodes[p.environment].isLeaf();
     };
+    // doCollides answered free above: no pair of triangles meets.
     const auto leafDistance = [&](const NodePair &p, double best) {
         const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
         const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
-        for (std::uint32_t i = 0; i < rn.triangleCount; ++i)
-        {
-            const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle + i]);
-            for (std::uint32_t j = 0; j < en.triangleCount; ++j)
-            {
-                const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
-                ++triangleTests;
-                // doCollides answered free above: no pair of triangles meets.
-                best =
-                    std::min(best, disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2], env.corner(et, 0),
-                                                            env.corner(et, 1), env.corner(et, 2)));
-            }
-        }
-        return best;
+        return leafTrianglesDistance(placed, robotTree_.triangleOrder().data() + rn.firstTriangle, rn.triangleCount,
+                                     env, environmentTree_.triangleOrder().data() + en.firstTriangle, en.triangleCount,
+                                     best, triangleTests);
     };
     // The larger node is split (the robot's when the environment's is a leaf).
     const auto split = [&](const NodePair &p, NodePair *children) {

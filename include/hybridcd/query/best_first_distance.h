@@ -3,9 +3,12 @@
 // every tree checker's clearance (volume trees, the octree), whatever their volumes and fan-out.
 #pragma once
 
+#include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/geometry/triangle_mesh.h"
 #include "hybridcd/query/traversal_stack.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 
 namespace hcd
@@ -75,6 +78,30 @@ double bestFirstDistance(NearestPairQueue &queue, Bound &&bound, IsLeafPair &&is
         }
         else
             queue.push(nearest);
+    }
+    return best;
+}
+
+/// A leaf pair's part of leafDistance: the smaller of `best` and the distances between the placed
+/// robot triangles robotTriangles[0, robotCount) (a PlacedRobot's triangles) and the environment
+/// triangles environmentTriangles[0, environmentCount) of `environment`, counting each pair in
+/// `tests`. Only for a pose already found free: the pairs are known disjoint.
+template <class Placed>
+double leafTrianglesDistance(Placed &placed, const std::uint32_t *robotTriangles, std::uint32_t robotCount,
+                             const TriangleMesh &environment, const std::uint32_t *environmentTriangles,
+                             std::uint32_t environmentCount, double best, std::uint64_t &tests)
+{
+    for (std::uint32_t i = 0; i < robotCount; ++i)
+    {
+        const auto &a = placed.triangle(robotTriangles[i]);
+        for (std::uint32_t j = 0; j < environmentCount; ++j)
+        {
+            const std::uint32_t et = environmentTriangles[j];
+            ++tests;
+            best = std::min(best, disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2],
+                                                           environment.corner(et, 0), environment.corner(et, 1),
+                                                           environment.corner(et, 2)));
+        }
     }
     return best;
 }
