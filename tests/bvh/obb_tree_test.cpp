@@ -37,20 +37,44 @@ void expectContainsSubtree(const VolumeTree<Volume> &tree, const Contains &conta
     EXPECT_EQ(nodes.front().triangleCount, tree.mesh().triangleCount());
 }
 const auto obbContains = [](const Obb &b, const Vec3 &p) { return b.contains(p); };
-}  // namespace
 
-TEST(ObbTree, ContainsEveryTriangleOfItsSubtreeOnRandomSoup)
+// `count` small triangles (corners within 0.5 of a centre) scattered over [-10, 10]^3.
+std::shared_ptr<TriangleMesh> randomSoup(test::TestRandom &rng, int count)
 {
-    test::TestRandom rng(7);
     std::uniform_real_distribution<double> u(-10, 10), s(-0.5, 0.5);
     auto mesh = std::make_shared<TriangleMesh>();
-    for (int t = 0; t < 2000; ++t)
+    for (int t = 0; t < count; ++t)
     {
         const Vec3 c(u(rng), u(rng), u(rng));
         for (int k = 0; k < 3; ++k)
             mesh->vertices.push_back(c + Vec3(s(rng), s(rng), s(rng)));
         mesh->triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
     }
+    return mesh;
+}
+
+// A flat square grid of side-1 cells, `cells` on a side, scaled by `scale` and moved far from the origin.
+std::shared_ptr<TriangleMesh> flatGrid(int cells, double scale)
+{
+    const std::uint32_t n = std::uint32_t(cells) + 1;
+    auto mesh = std::make_shared<TriangleMesh>();
+    for (std::uint32_t i = 0; i < n; ++i)
+        for (std::uint32_t j = 0; j < n; ++j)
+            mesh->vertices.push_back(scale * Vec3(i, j, 0.0) + Vec3(3e3 * scale, -7e2 * scale, 0));
+    for (std::uint32_t i = 0; i + 1 < n; ++i)
+        for (std::uint32_t j = 0; j + 1 < n; ++j)
+        {
+            mesh->triangles.push_back({i * n + j, (i + 1) * n + j, i * n + j + 1});
+            mesh->triangles.push_back({(i + 1) * n + j, (i + 1) * n + j + 1, i * n + j + 1});
+        }
+    return mesh;
+}
+}  // namespace
+
+TEST(ObbTree, ContainsEveryTriangleOfItsSubtreeOnRandomSoup)
+{
+    test::TestRandom rng(7);
+    const auto mesh = randomSoup(rng, 2000);
     for (unsigned leaf : {1u, 4u})
         expectContainsSubtree(VolumeTree<Obb>(mesh, leaf), obbContains);
 }
@@ -134,33 +158,9 @@ void expectKDopNodesEqualTheirFit(const VolumeTree<KDop<K>> &tree)
 TEST(KDopTree, NodesEqualTheFitOfTheirSubtree)
 {
     test::TestRandom rng(test::seeded(77));
-    std::vector<std::shared_ptr<TriangleMesh>> meshes;
-    {
-        std::uniform_real_distribution<double> u(-10, 10), s(-0.5, 0.5);
-        auto soup = std::make_shared<TriangleMesh>();
-        for (int t = 0; t < 3000; ++t)
-        {
-            const Vec3 c(u(rng), u(rng), u(rng));
-            for (int k = 0; k < 3; ++k)
-                soup->vertices.push_back(c + Vec3(s(rng), s(rng), s(rng)));
-            soup->triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
-        }
-        meshes.push_back(soup);
-    }
+    std::vector<std::shared_ptr<TriangleMesh>> meshes = {randomSoup(rng, 3000)};
     for (double scale : {1e-6, 1.0, 1e9})
-    {
-        auto flat = std::make_shared<TriangleMesh>();
-        for (int i = 0; i < 40; ++i)
-            for (int j = 0; j < 40; ++j)
-                flat->vertices.push_back(scale * Vec3(i, j, 0.0) + Vec3(3e3 * scale, -7e2 * scale, 0));
-        for (std::uint32_t i = 0; i + 1 < 40; ++i)
-            for (std::uint32_t j = 0; j + 1 < 40; ++j)
-            {
-                flat->triangles.push_back({i * 40 + j, (i + 1) * 40 + j, i * 40 + j + 1});
-                flat->triangles.push_back({(i + 1) * 40 + j, (i + 1) * 40 + j + 1, i * 40 + j + 1});
-            }
-        meshes.push_back(flat);
-    }
+        meshes.push_back(flatGrid(39, scale));
     for (const auto &mesh : meshes)
         for (unsigned leaf : {1u, 3u})
         {
