@@ -13,8 +13,7 @@ Vec3 principalAxis(const std::vector<Vec3> &points)
     // products (the shift keeps the sums of squares from cancelling far from the origin). Large sets
     // (the top levels of a tree over a big mesh) are sampled at a regular stride: the axis only
     // guides a split, and the full pass made these levels the bulk of a tree's build.
-    constexpr std::size_t kMaxSamples = 4096;
-    const std::size_t stride = points.size() > kMaxSamples ? points.size() / kMaxSamples : 1;
+    const std::size_t stride = principalAxisStride(points.size());
     const Vec3 shift = points.front();
     double sx = 0, sy = 0, sz = 0, sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;
     std::size_t count = 0;

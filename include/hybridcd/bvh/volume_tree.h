@@ -12,6 +12,7 @@
 // tree and the hybrid tree, so they differ only in their volumes.
 #pragma once
 
+#include "hybridcd/bv/principal_axis.h"
 #include "hybridcd/bvh/volume_traits.h"
 #include "hybridcd/geometry/triangle_mesh.h"
 
@@ -121,8 +122,7 @@ private:
                 self.volume = Traits::tight(scratch);  // margins and radii once the tree is built
                 return;
             }
-            const std::size_t corners = 3 * std::size_t(end - begin);
-            gatherCorners(begin, end, corners > kAxisSamples ? corners / kAxisSamples : 1, scratch);
+            gatherCorners(begin, end, principalAxisStride(3 * std::size_t(end - begin)), scratch);
             axis = principalAxis(scratch);
         }
         else
@@ -181,7 +181,6 @@ private:
     {
     };
     static constexpr bool kMergeable = HasTightUnion<Traits>::value;
-    static constexpr std::size_t kAxisSamples = 4096;  // as principalAxis() samples
 
     std::shared_ptr<const TriangleMesh> mesh_;
     unsigned maxLeafTriangles_;
