@@ -123,11 +123,26 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance)
     const Mat3 r = b.axes.transpose() * a.axes;
     const Vec3 t = b.axes.transpose() * (a.center - b.center);
     const Mat3 absR = r.cwiseAbs();
-    double gap = 0.0;
+    // Along each frame's three face axes: the gaps on orthonormal axes add in squares, since every
+    // pair of points differs by at least each positive gap along its axis.
+    double inB = 0.0, inA = 0.0;
     for (int i = 0; i < 3; ++i)
     {
-        gap = std::max(gap, std::fabs(t[i]) - b.halfExtents[i] - absR.row(i).dot(a.halfExtents));
-        gap = std::max(gap, std::fabs(t.dot(r.col(i))) - a.halfExtents[i] - absR.col(i).dot(b.halfExtents));
+        const double gapB = std::max(0.0, std::fabs(t[i]) - b.halfExtents[i] - absR.row(i).dot(a.halfExtents));
+        const double gapA =
+            std::max(0.0, std::fabs(t.dot(r.col(i))) - a.halfExtents[i] - absR.col(i).dot(b.halfExtents));
+        inB += gapB * gapB;
+        inA += gapA * gapA;
+    }
+    double gap = std::sqrt(std::max(inA, inB));
+    // The axis through the two centres, where boxes far apart in a skew pose are nearly farthest.
+    const double centres = t.norm();
+    if (centres > 0.0)
+    {
+        const Vec3 axis = t / centres;  // b's frame
+        const double along =
+            centres - b.halfExtents.dot(axis.cwiseAbs()) - a.halfExtents.dot((r.transpose() * axis).cwiseAbs());
+        gap = std::max(gap, along);
     }
     // The nine edge-edge axes b_i x a_j (in b's frame e_i x r.col(j)), of length sin(angle): the
     // gap along an unnormalised axis L is (|t . L| - a's and b's half widths along L) / |L|. Flat

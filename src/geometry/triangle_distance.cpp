@@ -138,6 +138,72 @@ double disjointTriangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, 
     return std::sqrt(disjointTriangleDistanceSquared(a0, a1, a2, b0, b1, b2));
 }
 
+namespace
+{
+/// Signed distances of p0, p1, p2 from the plane of (a0, a1, a2), and how far below the true ones
+/// they may be: `error` covers rounding in the normal (amplified for slivers, by 1 / sin of the
+/// corner angle) and in the products, with a wide margin. false for a triangle without a plane.
+bool planeDistances(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &p0, const Vec3 &p1, const Vec3 &p2,
+                    double scale, double (&side)[3], double &error)
+{
+    const Vec3 e1 = a1 - a0, e2 = a2 - a0;
+    const Vec3 n = e1.cross(e2);
+    const double length = n.norm();
+    if (!(length > 0.0) || !std::isfinite(length))
+        return false;
+    const Vec3 unit = n / length;
+    side[0] = unit.dot(p0 - a0);
+    side[1] = unit.dot(p1 - a0);
+    side[2] = unit.dot(p2 - a0);
+    error = 1e-9 * scale * std::max(1.0, std::sqrt(e1.squaredNorm() * e2.squaredNorm()) / length);
+    return std::isfinite(error);
+}
+
+/// A lower bound on the distance from the segment with plane distances s and t to the plane (0 when
+/// it may cross it).
+double segmentPlaneGap(double s, double t) { return (s > 0.0) == (t > 0.0) ? std::min(std::abs(s), std::abs(t)) : 0.0; }
+}  // namespace
+
+double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                                     const Vec3 &b2, double best)
+{
+    double scale = 0.0;
+    for (const Vec3 *v : {&a0, &a1, &a2, &b0, &b1, &b2})
+        scale = std::max(scale, v->cwiseAbs().maxCoeff());
+    double fromB[3], fromA[3], errorB = 0.0, errorA = 0.0;  // A's vertices from B's plane and B's from A's
+    if (!(best < std::numeric_limits<double>::infinity()) ||
+        !planeDistances(b0, b1, b2, a0, a1, a2, scale + best, fromB, errorB) ||
+        !planeDistances(a0, a1, a2, b0, b1, b2, scale + best, fromA, errorA))
+        return std::min(best, disjointTriangleDistance(a0, a1, a2, b0, b1, b2));
+    // A skipped candidate's true distance exceeds `limit` by more than any rounding, so its computed
+    // value is above the best one kept: the minimum is the same number.
+    double limit = best;
+    double bestSquared = std::numeric_limits<double>::infinity();
+    const auto keep = [&](double squared) {
+        if (squared < bestSquared)
+        {
+            bestSquared = squared;
+            limit = std::min(limit, std::sqrt(squared));
+        }
+    };
+    const Vec3 *a[3] = {&a0, &a1, &a2}, *b[3] = {&b0, &b1, &b2};
+    for (int i = 0; i < 3; ++i)
+    {
+        if (std::abs(fromB[i]) - errorB <= limit)
+            keep((*a[i] - closestPointOnTriangle(*a[i], b0, b1, b2)).squaredNorm());
+        if (std::abs(fromA[i]) - errorA <= limit)
+            keep((*b[i] - closestPointOnTriangle(*b[i], a0, a1, a2)).squaredNorm());
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+        const double gapA = segmentPlaneGap(fromB[i], fromB[(i + 1) % 3]) - errorB;
+        for (int j = 0; j < 3; ++j)
+            if (std::max(gapA, segmentPlaneGap(fromA[j], fromA[(j + 1) % 3]) - errorA) <= limit)
+                keep(segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
+    }
+    return std::min(best, std::sqrt(bestSquared));
+}
+
 bool trianglesWithinDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                              const Vec3 &b2, double bound)
 {

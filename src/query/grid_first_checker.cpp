@@ -228,6 +228,16 @@ bool GridFirstChecker::doCollides(const RigidTransform &worldFromRobot, QueryCon
     return exact_->collides(worldFromRobot, context);
 }
 
+double GridFirstChecker::doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const
+{
+    // The grid's proofs decide most poses; a proved-free one skips the exact checker's own collision pass.
+    if (freeByGrid(worldFromRobot))
+        return exact_->distanceOfFreePose(worldFromRobot, context);
+    if (collidingByGrid(worldFromRobot) || collidingByWitness(worldFromRobot))
+        return 0.0;
+    return exact_->distance(worldFromRobot, context);
+}
+
 bool GridFirstChecker::doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const
 {
     if (delta >= 0.0 && freeByGrid(worldFromRobot, delta, 0.0))

@@ -338,7 +338,23 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
         return std::numeric_limits<double>::infinity();
     if (doCollides(worldFromRobot, context))
         return 0.0;
+    return freeDistance(worldFromRobot, context);
+}
 
+template <class Volume>
+double VolumeTreeChecker<Volume>::doDistanceOfFreePose(const RigidTransform &worldFromRobot,
+                                                       QueryContext &context) const
+{
+    if (pieceStage_ || leafTolerance_ || !worldFromRobot.isFinite())
+        return doDistance(worldFromRobot, context);
+    if (robotTree_.empty() || environmentTree_.empty())
+        return std::numeric_limits<double>::infinity();
+    return freeDistance(worldFromRobot, context);
+}
+
+template <class Volume>
+double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRobot, QueryContext &context) const
+{
     // Branch and bound, nearest pair first (best_first_distance.h), on volume lower bounds.
     const double tolerance = toleranceFor(worldFromRobot);
     const auto &rNodes = robotTree_.nodes();
@@ -356,12 +372,23 @@ double VolumeTreeChecker<Volume>::doDistance(const RigidTransform &worldFromRobo
         // A pair the bounding spheres already put beyond the best distance needs no volume bound.
         if (sphereGap >= best)
             return sphereGap;
+        const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
+        const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
+        if (rn.isLeaf() && en.isLeaf() && rn.triangleCount == 1 && en.triangleCount == 1)
+        {
+            // Two triangles: their own world boxes are tighter than a robot volume re-boxed or turned.
+            const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle]);
+            const TriangleBounds &b = environmentTriangleBounds_[environmentTree_.triangleOrder()[en.firstTriangle]];
+            const double boxGap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(0.0).norm() - tolerance;
+            if (boxGap >= best)
+                return boxGap;
+        }
         return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
     const auto isLeafPair = [&](const NodePair &p) {
         return rNodes[p.robot].isLeaf() && eNodes[p.environment].isLeaf();
     };
-    // doCollides answered free above: no pair of triangles meets.
+    // The pose is free: no pair of triangles meets.
     const auto leafDistance = [&](const NodePair &p, double best) {
         const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
         const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];

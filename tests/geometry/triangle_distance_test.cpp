@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The fast paths of geometry/triangle_distance.h against triangleDistance itself, which the
 // brute-force checker uses: trianglesWithinDistance must give `triangleDistance <= bound` on every
-// pair and bound, disjointTriangleDistance the same bits on every pair that does not intersect, and
+// pair and bound, disjointTriangleDistance the same bits on every pair that does not intersect (and
+// disjointTriangleDistanceBelow the same bits as the minimum of its best and that), and
 // triangleDistance must bracket a dense sampling of the two triangles.
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_intersection.h"
@@ -105,6 +106,49 @@ TEST(TriangleDistance, DisjointDistanceIsTheDistanceBitForBit)
                       distanceOf(p));
         }
     EXPECT_GT(disjoint, 3000u);
+}
+
+// The pruned distance against the full one, for bests around the distance itself, on the pairs above,
+// on slivers (a corner within 1e-9 of the opposite edge) and on small triangles far from the origin.
+TEST(TriangleDistance, DistanceBelowABestIsTheMinimumBitForBit)
+{
+    hcd::test::TestRandom rng(hcd::test::seeded(2713));
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::vector<std::array<Triangle, 2>> pairs;
+    for (const double scale : {1e-6, 1e-2, 1.0, 1e3, 1e6})
+        for (const auto &p : trianglePairs(scale, 1500, rng))
+            pairs.push_back(p);
+    for (std::size_t i = 0; i < 1500; ++i)
+    {
+        std::array<Triangle, 2> p = trianglePairs(1.0, 1, rng).front();
+        if (i % 2 == 0)
+            for (Triangle &t : p)  // a sliver: the third corner almost on the first edge
+                t[2] = 0.5 * (t[0] + t[1]) + 1e-9 * Vec3(unit(rng), unit(rng), unit(rng));
+        else
+            for (Triangle &t : p)  // tiny triangles far out
+                for (Vec3 &v : t)
+                    v = Vec3(3e6, -2e6, 1e6) + 1e-3 * v;
+        pairs.push_back(p);
+    }
+    std::size_t disjoint = 0, below = 0;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const auto &p : pairs)
+    {
+        if (hcd::trianglesIntersect(p[0][0], p[0][1], p[0][2], p[1][0], p[1][1], p[1][2]))
+            continue;
+        ++disjoint;
+        const double d = hcd::disjointTriangleDistance(p[0][0], p[0][1], p[0][2], p[1][0], p[1][1], p[1][2]);
+        for (const double best : {inf, d, std::nextafter(d, inf), std::nextafter(d, -inf), d * (1 + 1e-12),
+                                  d * (1 - 1e-12), 0.5 * d, 1.01 * d, 2.0 * d, 0.0})
+        {
+            below += best < d ? 1 : 0;
+            ASSERT_EQ(hcd::disjointTriangleDistanceBelow(p[0][0], p[0][1], p[0][2], p[1][0], p[1][1], p[1][2], best),
+                      std::min(best, d))
+                << "distance " << d << ", best " << best;
+        }
+    }
+    EXPECT_GT(disjoint, 6000u);
+    EXPECT_GT(below, 20000u);
 }
 
 // Dense sampling: every sampled pair of points is at least the distance apart (less rounding), and

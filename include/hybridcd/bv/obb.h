@@ -43,9 +43,10 @@ bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, d
 /// The same test for two boxes given in one frame.
 bool obbsOverlap(const Obb &a, const Obb &b, double tolerance);
 
-/// A lower bound on the distance between box `a` (mapped by `worldFromA`) and box `b`: the largest
-/// gap along the fifteen separating axes (six face normals, nine edge-edge crossings), less
-/// `tolerance`, and never below zero.
+/// A lower bound on the distance between box `a` (mapped by `worldFromA`) and box `b`, less
+/// `tolerance` and never below zero: the largest of the distance from each box to the other's
+/// bounding box in its own frame (the face-axis gaps added in squares), the gap along the axis
+/// through the centres, and the gaps along the nine edge-edge axes.
 double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, const Obb &b, double tolerance);
 
 /// The same bound for two boxes given in one frame.

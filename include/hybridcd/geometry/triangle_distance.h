@@ -26,6 +26,12 @@ double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
 double disjointTriangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                                 const Vec3 &b2);
 
+/// `min(best, disjointTriangleDistance(a, b))`, bit for bit, with less work when `best` is small:
+/// a vertex or edge whose distance the triangles' planes already put beyond `best` (with a margin far
+/// above rounding) is not measured. For branch and bound over triangle pairs.
+double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                                     const Vec3 &b2, double best);
+
 /// `triangleDistance(a, b) <= bound`, the same answer in every case, decided with less work: a
 /// separating plane first, then the vertex and edge distances, and the exact intersection test
 /// only when neither settles it. For proximity queries.

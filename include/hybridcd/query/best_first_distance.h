@@ -98,9 +98,8 @@ double leafTrianglesDistance(Placed &placed, const std::uint32_t *robotTriangles
         {
             const std::uint32_t et = environmentTriangles[j];
             ++tests;
-            best = std::min(best, disjointTriangleDistance(a.corners[0], a.corners[1], a.corners[2],
-                                                           environment.corner(et, 0), environment.corner(et, 1),
-                                                           environment.corner(et, 2)));
+            best = disjointTriangleDistanceBelow(a.corners[0], a.corners[1], a.corners[2], environment.corner(et, 0),
+                                                 environment.corner(et, 1), environment.corner(et, 2), best);
         }
     }
     return best;

@@ -84,6 +84,14 @@ public:
     }
     double distance(const RigidTransform &worldFromRobot, QueryStats *stats = nullptr) const;
 
+    /// distance() for a pose the caller has already proved free (collides() would answer false):
+    /// hierarchical checkers then skip their own collision pass. The answer is distance()'s; on a
+    /// pose that is not free it is unspecified.
+    double distanceOfFreePose(const RigidTransform &worldFromRobot, QueryContext &context) const
+    {
+        return doDistanceOfFreePose(worldFromRobot, context);
+    }
+
     /// Every intersecting part pair at this pose, up to `limit` of them (empty when free). Checkers
     /// without contact reporting give none; hierarchical and brute-force checkers report them.
     std::vector<ContactPair> contacts(const RigidTransform &worldFromRobot, std::size_t limit,
@@ -137,6 +145,10 @@ private:
     // What each checker implements; the public forms above call these.
     virtual bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const = 0;
     virtual double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const = 0;
+    virtual double doDistanceOfFreePose(const RigidTransform &worldFromRobot, QueryContext &context) const
+    {
+        return doDistance(worldFromRobot, context);
+    }
     virtual std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
                                                 QueryContext &context) const
     {

@@ -35,7 +35,9 @@ struct GridFirstSettings
 ///   triangles of that leaf whose vertices are not all on one side of its plane.
 /// Everything else goes to the wrapped checker, which sets the answer, so answers are the wrapped
 /// checker's whatever the grid says (tested against bruteforce). Proximity queries use the same
-/// proof with each sphere grown by the slack; distance and contacts go straight to the wrapped one.
+/// proof with each sphere grown by the slack. Distance: 0 on a proved collision; on a proved-free pose
+/// the wrapped checker's distance without its collision pass (distanceOfFreePose). Contacts go
+/// straight to the wrapped one.
 class GridFirstChecker final : public CollisionChecker
 {
 public:
@@ -60,10 +62,7 @@ private:
     /// Fills leafStart_ and leafTriangles_ from cover_ and robot_.
     void indexLeafTriangles();
     bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
-    double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override
-    {
-        return exact_->distance(worldFromRobot, context);
-    }
+    double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
     bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
     bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                double robotRadius, QueryContext &context) const override;

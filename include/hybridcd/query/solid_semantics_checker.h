@@ -46,6 +46,11 @@ private:
     bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
     /// 0 when the surfaces touch or one object is inside the other; otherwise the surface distance.
     double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    /// A free pose has neither object inside the other: the surface distance alone.
+    double doDistanceOfFreePose(const RigidTransform &worldFromRobot, QueryContext &context) const override
+    {
+        return surface_->distanceOfFreePose(worldFromRobot, context);
+    }
     bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
     bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                double robotRadius, QueryContext &context) const override

@@ -55,6 +55,11 @@ public:
 private:
     bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
     double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    /// Without the collision pass when the leaves are plain triangles (approximate modes keep it:
+    /// their collision answer is not the exact one).
+    double doDistanceOfFreePose(const RigidTransform &worldFromRobot, QueryContext &context) const override;
+    /// The branch and bound of doDistance, on a pose known free.
+    double freeDistance(const RigidTransform &worldFromRobot, QueryContext &context) const;
     bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
     /// Uses each node's and triangle's own reach from the robot origin instead of the robot radius.
     bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
