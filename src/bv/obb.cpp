@@ -120,6 +120,11 @@ double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, con
 
 double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance)
 {
+    return obbDistanceLowerBound(a, b, tolerance, std::numeric_limits<double>::infinity());
+}
+
+double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance, double enough)
+{
     const Mat3 r = b.axes.transpose() * a.axes;
     const Vec3 t = b.axes.transpose() * (a.center - b.center);
     const Mat3 absR = r.cwiseAbs();
@@ -135,6 +140,8 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance)
         inA += gapA * gapA;
     }
     double gap = std::sqrt(std::max(inA, inB));
+    if (gap - tolerance >= enough)
+        return gap - tolerance;
     // The axis through the two centres, where boxes far apart in a skew pose are nearly farthest.
     const double centres = t.norm();
     if (centres > 0.0)
@@ -143,6 +150,8 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance)
         const double along =
             centres - b.halfExtents.dot(axis.cwiseAbs()) - a.halfExtents.dot((r.transpose() * axis).cwiseAbs());
         gap = std::max(gap, along);
+        if (gap - tolerance >= enough)
+            return gap - tolerance;
     }
     // The nine edge-edge axes b_i x a_j (in b's frame e_i x r.col(j)), of length sin(angle): the
     // gap along an unnormalised axis L is (|t . L| - a's and b's half widths along L) / |L|. Flat

@@ -383,7 +383,11 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
             if (boxGap >= best)
                 return boxGap;
         }
-        return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
+        // Boxes stop at the first stage of their bound that puts the pair beyond the best distance.
+        if constexpr (std::is_same_v<Volume, Obb>)
+            return std::max(sphereGap, obbDistanceLowerBound(robotVolume, envVolume, tolerance, best));
+        else
+            return std::max(sphereGap, VolumeTraits<Volume>::lowerBound(robotVolume, envVolume, tolerance));
     };
     const auto isLeafPair = [&](const NodePair &p) {
         return rNodes[p.robot].isLeaf() && eNodes[p.environment].isLeaf();

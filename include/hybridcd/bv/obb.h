@@ -51,4 +51,8 @@ double obbDistanceLowerBound(const Obb &a, const RigidTransform &worldFromA, con
 
 /// The same bound for two boxes given in one frame.
 double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance);
+
+/// The same bound, or a smaller one that is still at least `enough` (a pruning threshold): the
+/// cheaper stages first, and the first that reaches `enough` answers.
+double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance, double enough);
 }  // namespace hcd
