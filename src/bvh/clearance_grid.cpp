@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/bvh/clearance_grid.h"
 
+#include "hybridcd/geometry/triangle_distance.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -86,7 +88,10 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     if (mesh.empty())
         return;
     const auto start = std::chrono::steady_clock::now();
-    const BoundingBox box = mesh.bounds();
+    BoundingBox box = mesh.bounds();
+    const bool planar = settings.planar;
+    if (planar)
+        box.min.z() = box.max.z() = 0.0;  // the triangles' shadows on z = 0
     meshMin_ = box.min;
     meshMax_ = box.max;
     const double margin = std::max(0.0, settings.margin);
@@ -96,16 +101,21 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     const double floorExtent = std::max(extent.maxCoeff() * 1e-3, 1e-300);
     const Vec3 padded = extent.cwiseMax(Vec3::Constant(floorExtent));
     const std::size_t maxCells = std::max<std::size_t>(settings.maxCells, 8);
-    double h = std::cbrt(padded.prod() / double(maxCells));
     const auto countOf = [&](double size, double cell) { return std::max(1, int(std::ceil(size / cell))); };
-    while (double(countOf(padded.x(), h)) * countOf(padded.y(), h) * countOf(padded.z(), h) > double(maxCells))
+    // Planar: square cells over x and y, one layer centred on z = 0.
+    double h =
+        planar ? std::sqrt(padded.x() * padded.y() / double(maxCells)) : std::cbrt(padded.prod() / double(maxCells));
+    const auto layers = [&](double cell) { return planar ? 1 : countOf(padded.z(), cell); };
+    while (double(countOf(padded.x(), h)) * countOf(padded.y(), h) * layers(h) > double(maxCells))
         h *= 1.05;
     cellSize_ = h;
     inverseCellSize_ = 1.0 / h;
     nx_ = countOf(padded.x(), h);
     ny_ = countOf(padded.y(), h);
-    nz_ = countOf(padded.z(), h);
+    nz_ = layers(h);
     origin_ = box.min.array() - margin;
+    if (planar)
+        origin_.z() = -0.5 * h;
     roundingSlack_ = 1e-9 * magnitude;
     const std::size_t cellCount = std::size_t(nx_) * ny_ * nz_;
     const auto cellIndex = [&](int x, int y, int z) { return (std::size_t(z) * ny_ + y) * nx_ + x; };
@@ -119,9 +129,13 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     std::vector<double> squared(cellCount, kUnreached);
     std::vector<std::uint32_t> firstTriangle(settings.keepTriangles ? cellCount : 0, ~0u);
     const double boxSlack = 1e-9 * magnitude;
+    const auto shadow = [planar](const Vec3 &v) { return planar ? Vec3(v.x(), v.y(), 0.0) : v; };
+    // Planar: a cell is occupied when the shadow comes within its half diagonal of the centre
+    // (shadows of upright faces are segments, which a slab test would not narrow down).
+    const double planarReach = 0.5 * kSqrt3 * h * (1.0 + 1e-9) + boxSlack;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
-        const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
+        const Vec3 a = shadow(mesh.corner(t, 0)), b = shadow(mesh.corner(t, 1)), c = shadow(mesh.corner(t, 2));
         const Vec3 lo = a.cwiseMin(b).cwiseMin(c).array() - boxSlack;
         const Vec3 hi = a.cwiseMax(b).cwiseMax(c).array() + boxSlack;
         int x0, x1, y0, y1, z0, z1;
@@ -136,7 +150,8 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                 for (int x = x0; x <= x1; ++x)
                 {
                     const Vec3 centre = origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5);
-                    if (std::abs(normal.dot(centre - a)) <= reach)
+                    if (planar ? (closestPointOnTriangle(centre, a, b, c) - centre).norm() <= planarReach
+                               : std::abs(normal.dot(centre - a)) <= reach)
                     {
                         const std::size_t i = cellIndex(x, y, z);
                         squared[i] = 0.0;
@@ -172,8 +187,8 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
 
     // Sides: one exact point-in-solid test per face-connected region of free cells.
     std::vector<std::uint8_t> insideCell(cellCount, 0);
-    labelled_ = solids != nullptr;
-    if (solids && solids->closedComponentCount() > 0)
+    labelled_ = solids != nullptr && !planar;
+    if (labelled_ && solids->closedComponentCount() > 0)
     {
         std::vector<std::uint8_t> seen(cellCount, 0);
         std::vector<std::size_t> queue;
@@ -207,7 +222,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             }
         }
     }
-    hasMarkers_ = !markers.empty();
+    hasMarkers_ = !markers.empty() && !planar;
     stride_ = hasMarkers_ ? 2 : 1;
     cellBytes_.resize(cellCount * stride_);
     for (std::size_t i = 0; i < cellCount; ++i)

@@ -49,6 +49,7 @@ LoadedProblem loadProblem(const std::string &cfgPath, const MeshLimits &limits)
     p.scene.environment = p.world.mesh;
     p.scene.robotName = p.config.robotMesh;
     p.scene.environmentName = p.config.worldMesh;
+    p.scene.planarPoses = p.config.planar;
     return p;
 }
 }  // namespace hcd

@@ -50,9 +50,62 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
         grid_ = ClearanceGrid(*environment.mesh, &environmentSolids,
                               robotHasSolids_ ? firstVertexOfEachComponent(environmentSolids) : std::vector<Vec3>{},
                               gridSettings);
+        if (scene.planarPoses)
+            buildFootprint(*robot.mesh, *environment.mesh, environmentHasSolids_ ? &robotSolids : nullptr,
+                           settings.robotSpheres, settings.maxCells);
     }
     else
+    {
         grid_ = ClearanceGrid(*environment.mesh, nullptr, {}, gridSettings);
+        if (scene.planarPoses)
+            buildFootprint(*robot.mesh, *environment.mesh, nullptr, settings.robotSpheres, settings.maxCells);
+    }
+}
+
+void GridFirstChecker::buildFootprint(const TriangleMesh &robot, const TriangleMesh &environment,
+                                      const SolidQuery *robotSolids, std::size_t robotSpheres, std::size_t maxCells)
+{
+    const BoundingBox robotBox = robot.bounds();
+    robotHeightReach_ = std::max(std::abs(robotBox.min.z()), std::abs(robotBox.max.z())) * (1.0 + 1e-12);
+    // Triangles more than this above or below the robot's height range are left out: proofs whose
+    // slack reaches it go to the 3D grid instead.
+    footprintHeightMargin_ = robotReach_;
+    const double low = robotBox.min.z() - footprintHeightMargin_, high = robotBox.max.z() + footprintHeightMargin_;
+    TriangleMesh near;
+    near.vertices = environment.vertices;
+    for (std::size_t t = 0; t < environment.triangleCount(); ++t)
+    {
+        const double top =
+            std::max({environment.corner(t, 0).z(), environment.corner(t, 1).z(), environment.corner(t, 2).z()});
+        const double bottom =
+            std::min({environment.corner(t, 0).z(), environment.corner(t, 1).z(), environment.corner(t, 2).z()});
+        if (top >= low && bottom <= high)
+            near.triangles.push_back(environment.triangles[t]);
+    }
+    TriangleMesh shadow;
+    shadow.triangles = robot.triangles;
+    for (const Vec3 &v : robot.vertices)
+        shadow.vertices.emplace_back(v.x(), v.y(), 0.0);
+    footprintCover_ = sphereCover(shadow, std::clamp<std::size_t>(robotSpheres, 1, 32));
+    ClearanceGridSettings settings;
+    settings.maxCells = maxCells;
+    settings.planar = true;
+    for (const CoverSphere &s : footprintCover_)
+        if (s.firstChild < 0)
+            settings.margin = std::max(settings.margin, s.radius);
+    footprintGrid_ = ClearanceGrid(near, nullptr, {}, settings);  // empty without triangles: all clear
+    if (!robotSolids)
+        return;
+    const TriangleMesh &solidMesh = robotSolids->mesh();
+    for (const MeshComponent &component : robotSolids->components())
+    {
+        // Eight vertices spread over the component: one of them is likely in a free cell.
+        std::vector<Vec3> probes;
+        const std::size_t count = component.triangles.size(), step = std::max<std::size_t>(1, count / 8);
+        for (std::size_t i = 0; i < count && probes.size() < 8; i += step)
+            probes.push_back(solidMesh.corner(component.triangles[i], 0));
+        componentProbes_.push_back(std::move(probes));
+    }
 }
 
 void GridFirstChecker::indexLeafTriangles()
@@ -98,11 +151,84 @@ std::vector<HierarchyReport> GridFirstChecker::hierarchies(bool withVolumeRatios
     return reports;
 }
 
+namespace
+{
+/// Whether a cut of the cover tree below its root clears: depth first, a sphere that clears covers
+/// its subtree, a leaf that does not proves nothing.
+template <class Clears>
+bool cutBelowRootClears(const std::vector<CoverSphere> &cover, Clears &&clears)
+{
+    if (cover[0].firstChild < 0)
+        return false;
+    int stack[64];
+    int size = 0;
+    stack[size++] = cover[0].firstChild + 1;
+    stack[size++] = cover[0].firstChild;
+    while (size > 0)
+    {
+        const CoverSphere &s = cover[std::size_t(stack[--size])];
+        if (clears(s))
+            continue;
+        if (s.firstChild < 0)
+            return false;
+        stack[size++] = s.firstChild + 1;
+        stack[size++] = s.firstChild;
+    }
+    return true;
+}
+
+/// A rotation about z and a translation in z = 0, exactly: every point keeps its z, bit for bit.
+bool isPlanarPose(const RigidTransform &pose)
+{
+    const Mat3 &r = pose.rotation;
+    return r(2, 2) == 1.0 && r(0, 2) == 0.0 && r(1, 2) == 0.0 && r(2, 0) == 0.0 && r(2, 1) == 0.0 &&
+           pose.translation.z() == 0.0;
+}
+}  // namespace
+
+std::optional<bool> GridFirstChecker::freeByFootprint(const RigidTransform &worldFromRobot, double translationSlack,
+                                                      double radialSlack) const
+{
+    if (footprintCover_.empty() || !isPlanarPose(worldFromRobot))
+        return std::nullopt;
+    // Every robot point's slack must stay below the height margin: the triangles left out are
+    // farther than that.
+    if (!(translationSlack + radialSlack * robotReach_ < footprintHeightMargin_))
+        return std::nullopt;
+    const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
+    const auto clears = [&](const CoverSphere &s) {
+        const ClearanceSample sample = footprintGrid_.at(worldFromRobot.apply(s.center));
+        // A robot point over this circle lies within sqrt((|c| + r)^2 + z^2) of the robot origin.
+        double slack = translationSlack;
+        if (radialSlack > 0.0)
+        {
+            const double planarReach = s.center.norm() + s.radius;
+            slack += radialSlack * std::sqrt(planarReach * planarReach + robotHeightReach_ * robotHeightReach_);
+        }
+        return sample.clearance > s.radius + slack + rounding;
+    };
+    if (!clears(footprintCover_[0]) && !cutBelowRootClears(footprintCover_, clears))
+        return false;
+    if (!solid_)
+        return true;
+    // No surface comes near: each object is wholly inside or outside each solid of the other.
+    if (robotHasSolids_ && !(grid_.at(worldFromRobot.translation).markerClearance > robotReach_ + rounding))
+        return false;
+    for (const std::vector<Vec3> &probes : componentProbes_)
+        if (std::none_of(probes.begin(), probes.end(),
+                         [&](const Vec3 &p) { return grid_.at(worldFromRobot.apply(p)).outside; }))
+            return false;
+    return true;
+}
+
 bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double translationSlack,
                                   double radialSlack) const
 {
     if (grid_.empty() || cover_.empty() || !worldFromRobot.isFinite())
         return false;
+    // A planar pose on a planar scene: the footprint decides (it is the finer of the two grids there).
+    if (const std::optional<bool> planar = freeByFootprint(worldFromRobot, translationSlack, radialSlack))
+        return *planar;
     // Rounding of R * c + t, relative to the magnitudes involved.
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     const auto clears = [&](const CoverSphere &s) {
@@ -118,25 +244,9 @@ bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double t
         return true;
     if (solid_ && robotHasSolids_ && !(grid_.at(worldFromRobot.translation).markerClearance > robotReach_ + rounding))
         return false;
-    // Depth first over the cover tree: a sphere clear of the surface (and outside every solid)
-    // clears its whole subtree; a leaf that is not proves nothing.
-    if (cover_[0].firstChild < 0)
-        return false;
-    int stack[64];
-    int size = 0;
-    stack[size++] = cover_[0].firstChild + 1;
-    stack[size++] = cover_[0].firstChild;
-    while (size > 0)
-    {
-        const CoverSphere &s = cover_[std::size_t(stack[--size])];
-        if (clears(s))
-            continue;
-        if (s.firstChild < 0)
-            return false;
-        stack[size++] = s.firstChild + 1;
-        stack[size++] = s.firstChild;
-    }
-    return true;
+    // A cut of the cover tree: a sphere clear of the surface (and outside every solid) clears its
+    // whole subtree.
+    return cutBelowRootClears(cover_, clears);
 }
 
 bool GridFirstChecker::collidingByGrid(const RigidTransform &worldFromRobot) const

@@ -66,8 +66,11 @@ double SolidSemanticsChecker::doDistance(const RigidTransform &worldFromRobot, Q
 {
     if (!worldFromRobot.isFinite())
         return 0.0;
-    const double d = surface_->distance(worldFromRobot, context);
-    return d > 0.0 && contained(worldFromRobot) ? 0.0 : d;
+    // The collision answer first: a robot inside a solid is at distance 0 without the surfaces'
+    // branch and bound.
+    if (doCollides(worldFromRobot, context))
+        return 0.0;
+    return surface_->distanceOfFreePose(worldFromRobot, context);
 }
 
 bool SolidSemanticsChecker::doWithinDistance(const RigidTransform &worldFromRobot, double delta,

@@ -306,3 +306,155 @@ TEST(GridFirst, AnOpenSheetThroughAClosedRobotIsProvedColliding)
     EXPECT_GT(v.collidingProved, v.colliding / 5);
     EXPECT_GT(v.freeProved, v.free / 2);
 }
+
+namespace
+{
+TriangleMesh shadowOf(const TriangleMesh &mesh)
+{
+    TriangleMesh shadow = mesh;
+    for (Vec3 &v : shadow.vertices)
+        v.z() = 0.0;
+    return shadow;
+}
+
+/// An upright triangle standing on the segment from a to b (z from `low` to `high`): its shadow is
+/// a slanted segment.
+TriangleMesh uprightTriangle(const Vec3 &a, const Vec3 &b, double low, double high)
+{
+    TriangleMesh t;
+    t.vertices = {Vec3(a.x(), a.y(), low), Vec3(b.x(), b.y(), low), Vec3(a.x(), a.y(), high)};
+    t.triangles = {{0, 1, 2}};
+    return t;
+}
+}  // namespace
+
+TEST(ClearanceGrid, PlanarBoundsAreLowerBoundsOnShadowDistances)
+{
+    test::TestRandom rng(test::seeded(17));
+    for (double scale : {1e-6, 1.0, 1e6})
+    {
+        TriangleMesh mesh = clutter(rng, scale);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        for (int i = 0; i < 6; ++i)
+            append(mesh, uprightTriangle(scale * Vec3(u(rng), u(rng), 0), scale * Vec3(u(rng), u(rng), 0),
+                                         scale * u(rng), scale * (1.0 + u(rng))));
+        ClearanceGridSettings settings;
+        settings.maxCells = 1 << 14;
+        settings.margin = 0.3 * scale;
+        settings.planar = true;
+        const ClearanceGrid grid(mesh, nullptr, {}, settings);
+        EXPECT_EQ(grid.cells()[2], 1);
+        const TriangleMesh shadow = shadowOf(mesh);
+        std::uniform_real_distribution<double> w(-1.6, 1.6);
+        constexpr int kPoints = 3000;
+        int positiveSeen = 0;
+        for (int i = 0; i < kPoints; ++i)
+        {
+            const Vec3 p = scale * Vec3(w(rng), w(rng), 0.0);
+            const ClearanceSample s = grid.at(p);
+            ASSERT_LE(s.clearance, pointMeshDistance(shadow, p)) << "scale " << scale << " point " << p.transpose();
+            ASSERT_FALSE(s.inside);  // no sides on a footprint grid
+            positiveSeen += s.clearance > 0.0;
+        }
+        EXPECT_GT(positiveSeen, kPoints / 10) << "scale " << scale;
+    }
+}
+
+// A planar scene (CollisionScene::planarPoses): the footprint proof against bruteforce, with
+// triangles above and below the robot's height (a ceiling within the height margin, a floor beyond
+// it), slanted upright walls, closed boxes, a tall room the robot can sit inside and a small box the
+// closed robot can swallow; planar poses, poses brought to within 1e-9 of contact, and poses that are not planar
+// (tilted, or lifted off z = 0), which the 3D grid answers instead.
+TEST(GridFirst, PlanarScenesAgreeWithBruteForce)
+{
+    test::TestRandom rng(test::seeded(18));
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (double scale : {1e-3, 1.0, 1e3})
+        for (ContactSemantics semantics : {ContactSemantics::Solid, ContactSemantics::SurfaceOnly})
+        {
+            TriangleMesh robot = test::boxMesh(scale * Vec3(-0.12, -0.04, 0.0), scale * Vec3(0.12, 0.04, 0.3));
+            append(robot, test::boxMesh(scale * Vec3(0.08, -0.1, 0.1), scale * Vec3(0.11, 0.1, 0.2)));
+            const double reach = robot.radiusAboutOrigin();
+            TriangleMesh env;
+            for (int i = 0; i < 8; ++i)
+            {
+                const Vec3 c(u(rng), u(rng), 0.15);
+                const Vec3 half(0.05 + 0.2 * std::abs(u(rng)), 0.05 + 0.2 * std::abs(u(rng)), 0.3);
+                append(env, test::boxMesh(scale * (c - half), scale * (c + half)));
+            }
+            // A ceiling within the height margin (0.2 of the reach above the robot's top), a floor and
+            // the top and bottom of a room beyond it (3 reaches): the floor and the room's lids are
+            // left out of the footprint, so only the probes put the robot inside the room.
+            const double r = reach / scale;
+            append(env, test::boxMesh(scale * Vec3(0.0, -1.4, 0.3 + 0.2 * r), scale * Vec3(1.4, 0.0, 0.35 + 0.2 * r)));
+            append(env, test::boxMesh(scale * Vec3(-1.5, -1.5, -3.0 * r - 0.1), scale * Vec3(1.5, 1.5, -3.0 * r)));
+            append(env,
+                   test::boxMesh(scale * Vec3(-1.4, 0.9, -3.0 * r - 0.05), scale * Vec3(-0.9, 1.4, 0.35 + 3.0 * r)));
+            append(env, test::boxMesh(scale * Vec3(1.0, -1.0, 0.12), scale * Vec3(1.01, -0.99, 0.13)));  // a crumb
+            for (int i = 0; i < 5; ++i)
+                append(env, uprightTriangle(scale * Vec3(u(rng), u(rng), 0), scale * Vec3(u(rng), u(rng), 0),
+                                            -0.1 * scale, 0.5 * scale));
+            CollisionScene scene;
+            scene.robot = shared(robot);
+            scene.environment = shared(env);
+            scene.planarPoses = true;
+            const auto brute = makeChecker("bruteforce", scene);
+
+            std::vector<RigidTransform> poses;
+            const auto planar = [&] {
+                return RigidTransform::fromPlanarPose(1.5 * scale * u(rng), 1.5 * scale * u(rng), M_PI * u(rng));
+            };
+            for (int i = 0; i < test::cases(300); ++i)
+                poses.push_back(planar());
+            for (double yaw : {0.0, 0.3, 1.2})
+                poses.push_back(RigidTransform::fromPlanarPose(-1.15 * scale, 1.15 * scale, yaw));  // in the room
+            poses.push_back(RigidTransform::fromPlanarPose(1.005 * scale, -0.995 * scale, 0.0));    // around the crumb
+            // Near contact: bisect between a free and a colliding planar pose of one yaw.
+            for (int pair = 0; pair < test::cases(40); ++pair)
+            {
+                RigidTransform in = planar(), out = planar();
+                out.rotation = in.rotation;
+                if (brute->collides(in) == brute->collides(out))
+                    continue;
+                if (brute->collides(out))
+                    std::swap(in, out);
+                for (int k = 0; k < 60 && (in.translation - out.translation).norm() > 1e-9 * scale; ++k)
+                {
+                    const Vec3 mid = 0.5 * (in.translation + out.translation);
+                    (brute->collides({in.rotation, mid}) ? in.translation : out.translation) = mid;
+                }
+                poses.push_back(in);
+                poses.push_back(out);
+            }
+            for (int i = 0; i < test::cases(60); ++i)
+            {
+                RigidTransform tilted = planar();
+                if (i % 2 == 0)
+                    tilted.rotation =
+                        Eigen::AngleAxisd(1e-3 * u(rng), Vec3::UnitX()).toRotationMatrix() * tilted.rotation;
+                else
+                    tilted.translation.z() = 1e-9 * scale * u(rng);
+                poses.push_back(tilted);
+            }
+            const Verdicts v = expectAgreement(scene, semantics, poses);
+            EXPECT_GT(v.freeProved, v.free / 3) << "scale " << scale;
+            EXPECT_GT(v.colliding, 20) << "scale " << scale;
+
+            // Swept proximity on planar poses: a proof with slack t and radial rate r means the exact
+            // distance exceeds t + r * reach.
+            const auto checker = makeChecker("obb", scene);
+            const auto *grid = dynamic_cast<const GridFirstChecker *>(checker.get());
+            ASSERT_NE(grid, nullptr);
+            int proved = 0;
+            for (int i = 0; i < test::cases(300); ++i)
+            {
+                const RigidTransform pose = planar();
+                const double slack = 0.03 * scale * (i % 5), radial = 0.05 * (i % 3);
+                if (!grid->freeByGrid(pose, slack, radial))
+                    continue;
+                ++proved;
+                EXPECT_GT(brute->distance(pose), slack + radial * reach - 1e-12 * scale) << i;
+            }
+            EXPECT_GT(proved, test::cases(300) / 10) << "scale " << scale;
+        }
+}

@@ -23,6 +23,11 @@ struct ClearanceGridSettings
     double margin = 0.0;
     /// Keep, for each occupied cell, one triangle that marked it (triangleNear()).
     bool keepTriangles = false;
+    /// A footprint grid: the triangles count by their shadows on the plane z = 0 (each point's
+    /// (x, y, 0)), the cells are one layer of squares centred on that plane, and queries come at
+    /// z = 0, where the clearance bounds the distance in x and y to every shadow. No sides or
+    /// markers. For motions in the plane, with the environment's triangles at the robot's height.
+    bool planar = false;
 };
 
 /// What the grid knows about one point (world frame).

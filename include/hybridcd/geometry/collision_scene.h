@@ -17,5 +17,9 @@ struct CollisionScene
     std::shared_ptr<const TriangleMesh> environment;
     std::string robotName;
     std::string environmentName;
+    /// The poses queried are mostly planar (OMPL's SE(2)): rotations about z and translations with
+    /// z = 0. A hint for first layers that can use it (a footprint grid); every pose, planar or
+    /// not, is still answered exactly.
+    bool planarPoses = false;
 };
 }  // namespace hcd

@@ -9,6 +9,7 @@
 #include "hybridcd/query/solid_semantics_checker.h"
 
 #include <memory>
+#include <optional>
 
 namespace hcd
 {
@@ -61,6 +62,13 @@ public:
 private:
     /// Fills leafStart_ and leafTriangles_ from cover_ and robot_.
     void indexLeafTriangles();
+    /// For a planar scene: the footprint grid, the robot's footprint cover and its component probes.
+    void buildFootprint(const TriangleMesh &robot, const TriangleMesh &environment, const SolidQuery *robotSolids,
+                        std::size_t robotSpheres, std::size_t maxCells);
+    /// freeByGrid for a planar pose (rotation about z, no z translation) on the footprint grid;
+    /// nullopt when it cannot apply (not planar, or a slack beyond the height margin).
+    std::optional<bool> freeByFootprint(const RigidTransform &worldFromRobot, double translationSlack,
+                                        double radialSlack) const;
     bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const override;
     double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const override;
     bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
@@ -86,5 +94,17 @@ private:
     /// leafStart_[i + 1]) (empty for inner spheres).
     std::vector<std::uint32_t> leafStart_;
     std::vector<std::uint32_t> leafTriangles_;
+
+    // Planar scenes (CollisionScene::planarPoses). A planar pose keeps every robot point's z, so
+    // only environment triangles that reach the robot's height range matter within
+    // footprintHeightMargin_ of it; their shadows on z = 0 are at most as far from the robot's
+    // shadow as the triangles are from the robot.
+    ClearanceGrid footprintGrid_;              ///< planar grid of those triangles' shadows
+    std::vector<CoverSphere> footprintCover_;  ///< circles (z = 0, robot frame) over the robot's shadow
+    double footprintHeightMargin_ = 0.0;       ///< triangles farther above or below were left out
+    double robotHeightReach_ = 0.0;            ///< max |z| of a robot vertex (robot frame)
+    /// Per robot component, a few of its vertices: one proved outside every environment solid puts
+    /// the whole component outside once no surface comes near it.
+    std::vector<std::vector<Vec3>> componentProbes_;
 };
 }  // namespace hcd

@@ -69,18 +69,22 @@ public:
     void push(const BoundedPair &p)
     {
         heap_.push_back(p);
-        std::push_heap(heap_.begin(), heap_.end(), farther);
+        std::push_heap(heap_.begin(), heap_.end(), Farther{});
     }
     BoundedPair pop()
     {
-        std::pop_heap(heap_.begin(), heap_.end(), farther);
+        std::pop_heap(heap_.begin(), heap_.end(), Farther{});
         const BoundedPair p = heap_.back();
         heap_.pop_back();
         return p;
     }
 
 private:
-    static bool farther(const BoundedPair &x, const BoundedPair &y) { return x.bound > y.bound; }
+    /// A type rather than a function pointer, so that the heap's comparisons inline.
+    struct Farther
+    {
+        bool operator()(const BoundedPair &x, const BoundedPair &y) const { return x.bound > y.bound; }
+    };
     std::vector<BoundedPair> heap_;
 };
 }  // namespace hcd
