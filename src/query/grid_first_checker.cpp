@@ -197,7 +197,6 @@ std::optional<bool> GridFirstChecker::freeByFootprint(const RigidTransform &worl
         return std::nullopt;
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     const auto clears = [&](const CoverSphere &s) {
-        const ClearanceSample sample = footprintGrid_.at(worldFromRobot.apply(s.center));
         // A robot point over this circle lies within sqrt((|c| + r)^2 + z^2) of the robot origin.
         double slack = translationSlack;
         if (radialSlack > 0.0)
@@ -205,7 +204,7 @@ std::optional<bool> GridFirstChecker::freeByFootprint(const RigidTransform &worl
             const double planarReach = s.center.norm() + s.radius;
             slack += radialSlack * std::sqrt(planarReach * planarReach + robotHeightReach_ * robotHeightReach_);
         }
-        return sample.clearance > s.radius + slack + rounding;
+        return footprintGrid_.clears(worldFromRobot.apply(s.center), s.radius + slack + rounding, false);
     };
     if (!clears(footprintCover_[0]) && !cutBelowRootClears(footprintCover_, clears))
         return false;
@@ -232,11 +231,10 @@ bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double t
     // Rounding of R * c + t, relative to the magnitudes involved.
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     const auto clears = [&](const CoverSphere &s) {
-        const ClearanceSample sample = grid_.at(worldFromRobot.apply(s.center));
         // Points of the sphere lie within |c| + r of the robot's origin (no square root for a state).
         const double slack =
             radialSlack > 0.0 ? translationSlack + radialSlack * (s.center.norm() + s.radius) : translationSlack;
-        return sample.clearance > s.radius + slack + rounding && (!solid_ || sample.outside);
+        return grid_.clears(worldFromRobot.apply(s.center), s.radius + slack + rounding, solid_);
     };
     // The root sphere holds the whole robot, solid included (a ball is convex): when it clears the
     // surface no environment component can lie inside the robot either.

@@ -70,6 +70,22 @@ RigidTransform randomPose(test::TestRandom &rng, double extent)
     return {test::randomRotation(rng), Vec3(u(rng), u(rng), u(rng))};
 }
 
+/// ClearanceGrid::clears, the square-root-free test, against at(): it never clears where at() does
+/// not, and clears wherever at() does by more than rounding.
+void expectClearsAgreesWithAt(const ClearanceGrid &grid, const Vec3 &p, const ClearanceSample &s, double scale)
+{
+    for (const double reach : {0.0, 0.5 * s.clearance, s.clearance, 0.999999 * s.clearance, 2.0 * s.clearance})
+        for (const bool outside : {false, true})
+        {
+            const bool byAt = s.clearance > reach && (!outside || s.outside);
+            const bool byClears = grid.clears(p, reach, outside);
+            if (byClears)
+                ASSERT_TRUE(byAt) << "point " << p.transpose() << " reach " << reach;
+            if (s.clearance > reach * (1.0 + 1e-9) + 1e-9 * scale && (!outside || s.outside))
+                ASSERT_TRUE(byClears) << "point " << p.transpose() << " reach " << reach;
+        }
+}
+
 struct Verdicts
 {
     int freeProved = 0, collidingProved = 0, witnessProved = 0, free = 0, colliding = 0;
@@ -154,6 +170,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
             for (const Vec3 &m : markers)
                 markerDistance = std::min(markerDistance, (m - p).norm());
             ASSERT_LE(s.markerClearance, markerDistance);
+            expectClearsAgreesWithAt(grid, p, s, scale);
             ASSERT_FALSE(s.inside && s.outside);
             if (s.inside)
                 ASSERT_TRUE(solids.insideAnySolid(p));
@@ -354,6 +371,7 @@ TEST(ClearanceGrid, PlanarBoundsAreLowerBoundsOnShadowDistances)
             const ClearanceSample s = grid.at(p);
             ASSERT_LE(s.clearance, pointMeshDistance(shadow, p)) << "scale " << scale << " point " << p.transpose();
             ASSERT_FALSE(s.inside);  // no sides on a footprint grid
+            expectClearsAgreesWithAt(grid, p, s, scale);
             positiveSeen += s.clearance > 0.0;
         }
         EXPECT_GT(positiveSeen, kPoints / 10) << "scale " << scale;

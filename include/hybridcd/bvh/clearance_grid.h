@@ -68,6 +68,11 @@ public:
     /// Inline (below): every grid-first check starts here.
     ClearanceSample at(const Vec3 &p) const;
 
+    /// `at(p).clearance > reach` (and `at(p).outside` when `outside` is asked for), decided without
+    /// square roots inside the grid: the free-pose proofs' test, once per cover sphere. Inline
+    /// (below).
+    bool clears(const Vec3 &p, double reach, bool outside) const;
+
     /// A triangle of the mesh that marked the cell holding p, or -1 when that cell is free, lies
     /// beyond the grid, or triangles were not kept. Near p: within the cell's diagonal of it.
     std::int64_t triangleNear(const Vec3 &p) const;
@@ -165,5 +170,29 @@ inline ClearanceSample ClearanceGrid::at(const Vec3 &p) const
     s.markerClearance = hasMarkers_ ? std::max(0.0, cellBytes_[i * 2 + 1] * cellSize_ - slack)
                                     : std::numeric_limits<double>::infinity();
     return s;
+}
+inline bool ClearanceGrid::clears(const Vec3 &p, double reach, bool outside) const
+{
+    if (cellBytes_.empty())
+        return true;
+    const Vec3 f = (p - origin_) * inverseCellSize_;
+    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < nx_ && f.y() < ny_ && f.z() < nz_))
+    {
+        const ClearanceSample s = at(p);  // beyond the grid (or not finite): the box distance
+        return s.clearance > reach && (!outside || s.outside);
+    }
+    const std::size_t ix = std::size_t(f.x()), iy = std::size_t(f.y()), iz = std::size_t(f.z());
+    const std::uint8_t code = cellBytes_[((iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix) * stride_];
+    const bool inside = code >= 128;
+    if (code == 0 || (outside && (inside || !labelled_)))
+        return false;
+    // at(): (units / 2 - offCentre) * cellSize - slack > reach, i.e. offCentre < room (in cells),
+    // less 1e-9 of a cell, so that rounding never lets this clear where at() would not.
+    const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
+    const double room = (inside ? code - 128 : code - 1) * 0.5 - (reach + slack) * inverseCellSize_ - 1e-9;
+    if (!(room > 0.0))
+        return false;
+    const Vec3 off = f - Vec3(double(ix) + 0.5, double(iy) + 0.5, double(iz) + 0.5);
+    return off.squaredNorm() < room * room;
 }
 }  // namespace hcd
