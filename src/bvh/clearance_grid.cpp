@@ -223,12 +223,11 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
         }
     }
     hasMarkers_ = !markers.empty() && !planar;
-    stride_ = hasMarkers_ ? 2 : 1;
-    cellBytes_.resize(cellCount * stride_);
+    cellBytes_.resize(cellCount);
     for (std::size_t i = 0; i < cellCount; ++i)
-        cellBytes_[i * stride_] = !freeCell[i]    ? 0
-                                  : insideCell[i] ? std::uint8_t(128 + unitsBelow(squared[i], 0.0, 2, 127))
-                                                  : std::uint8_t(1 + unitsBelow(squared[i], 0.0, 2, 126));
+        cellBytes_[i] = !freeCell[i]    ? 0
+                        : insideCell[i] ? std::uint8_t(128 + unitsBelow(squared[i], 0.0, 2, 127))
+                                        : std::uint8_t(1 + unitsBelow(squared[i], 0.0, 2, 126));
 
     if (hasMarkers_)
     {
@@ -245,8 +244,9 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                         squared[cellIndex(x, y, z)] = 0.0;
         }
         distanceTransform3d(squared, nx_, ny_, nz_);
+        markerBytes_.resize(cellCount);
         for (std::size_t i = 0; i < cellCount; ++i)
-            cellBytes_[i * 2 + 1] = std::uint8_t(unitsBelow(squared[i], 0.5 * kSqrt3, 1, 255));
+            markerBytes_[i] = std::uint8_t(unitsBelow(squared[i], 0.5 * kSqrt3, 1, 255));
     }
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -86,7 +86,7 @@ public:
     std::size_t occupiedCells() const { return occupied_; }
     std::size_t memoryBytes() const
     {
-        return cellBytes_.size() + 12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
+        return cellBytes_.size() + markerBytes_.size() + 12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
     }
     double buildSeconds() const { return buildSeconds_; }
 
@@ -108,13 +108,13 @@ private:
     int nx_ = 0, ny_ = 0, nz_ = 0;
     bool labelled_ = false;
     bool hasMarkers_ = false;
-    /// Per cell, `stride_` bytes side by side (one cache line holds both for a query):
-    /// - the surface code, 0: occupied; 1..127: outside every solid, the cell's centre at least
-    ///   (code - 1) half cells from the surface; 128..255: inside a solid, (code - 128) half cells;
-    /// - with markers (stride 2), the distance to the nearest marker, >= steps cells (saturating
-    ///   at 255).
+    /// Per cell, the surface code, 0: occupied; 1..127: outside every solid, the cell's centre at
+    /// least (code - 1) half cells from the surface; 128..255: inside a solid, (code - 128) half
+    /// cells. One byte per cell, so that the codes every proof reads stay in cache.
     std::vector<std::uint8_t> cellBytes_;
-    std::size_t stride_ = 1;
+    /// With markers, per cell, the distance to the nearest marker, >= code cells (saturating at
+    /// 255); read far less often, so kept apart.
+    std::vector<std::uint8_t> markerBytes_;
     /// Kept triangles: bit i % 64 of occupiedMask_[i / 64] marks occupied cell i; occupiedBefore_
     /// counts occupied cells of earlier words, so a cell's rank indexes occupiedTriangle_.
     std::vector<std::uint64_t> occupiedMask_;
@@ -158,7 +158,7 @@ inline ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         return s;
     }
     const auto i = std::size_t(cell.index);
-    const std::uint8_t code = cellBytes_[i * stride_];
+    const std::uint8_t code = cellBytes_[i];
     if (code != 0)
     {
         const bool inside = code >= 128;
@@ -167,8 +167,8 @@ inline ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         s.inside = labelled_ && inside;
         s.outside = labelled_ && !inside;
     }
-    s.markerClearance = hasMarkers_ ? std::max(0.0, cellBytes_[i * 2 + 1] * cellSize_ - slack)
-                                    : std::numeric_limits<double>::infinity();
+    s.markerClearance =
+        hasMarkers_ ? std::max(0.0, markerBytes_[i] * cellSize_ - slack) : std::numeric_limits<double>::infinity();
     return s;
 }
 inline bool ClearanceGrid::clears(const Vec3 &p, double reach, bool outside) const
@@ -178,11 +178,14 @@ inline bool ClearanceGrid::clears(const Vec3 &p, double reach, bool outside) con
     const Vec3 f = (p - origin_) * inverseCellSize_;
     if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < nx_ && f.y() < ny_ && f.z() < nz_))
     {
-        const ClearanceSample s = at(p);  // beyond the grid (or not finite): the box distance
-        return s.clearance > reach && (!outside || s.outside);
+        // Beyond the grid (or not finite): at()'s box distance, |gap| (1 - 1e-12) - slack > reach
+        // (which also puts p outside), squared, with 1e-9 to spare for rounding.
+        const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
+        const double need = (reach + slack) * (1.0 + 1e-9);
+        return (meshMin_ - p).cwiseMax(p - meshMax_).cwiseMax(Vec3::Zero()).squaredNorm() > need * need;
     }
     const std::size_t ix = std::size_t(f.x()), iy = std::size_t(f.y()), iz = std::size_t(f.z());
-    const std::uint8_t code = cellBytes_[((iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix) * stride_];
+    const std::uint8_t code = cellBytes_[(iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix];
     const bool inside = code >= 128;
     if (code == 0 || (outside && (inside || !labelled_)))
         return false;
