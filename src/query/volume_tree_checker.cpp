@@ -380,8 +380,9 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
             const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle]);
             const TriangleBounds &b = environmentTriangleBounds_[environmentTree_.triangleOrder()[en.firstTriangle]];
             const double boxGap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(0.0).norm() - tolerance;
-            if (boxGap >= best)
-                return boxGap;
+            // An axis-aligned robot leaf re-boxed holds the triangle's own box: its bound is no better.
+            if (boxGap >= best || std::is_same_v<Volume, Aabb>)
+                return std::max(sphereGap, boxGap);
         }
         // Boxes stop at the first stage of their bound that puts the pair beyond the best distance.
         if constexpr (std::is_same_v<Volume, Obb>)
