@@ -86,7 +86,8 @@ void GridFirstChecker::buildFootprint(const TriangleMesh &robot, const TriangleM
     shadow.triangles = robot.triangles;
     for (const Vec3 &v : robot.vertices)
         shadow.vertices.emplace_back(v.x(), v.y(), 0.0);
-    footprintCover_ = sphereCover(shadow, std::clamp<std::size_t>(robotSpheres, 1, 32));
+    // Twice the 3D cover's leaves: circles are cheap, and smaller ones prove more poses near walls.
+    footprintCover_ = sphereCover(shadow, std::clamp<std::size_t>(2 * robotSpheres, 1, 64));
     ClearanceGridSettings settings;
     settings.maxCells = maxCells;
     settings.planar = true;
