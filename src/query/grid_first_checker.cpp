@@ -25,9 +25,26 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     // Cells around the mesh as wide as the largest cover sphere: a sphere that reaches the mesh has
     // its centre in the grid.
     gridSettings.margin = 0.0;
+    std::vector<double> leafRadii;
     for (const CoverSphere &s : cover_)
         if (s.firstChild < 0)
+        {
             gridSettings.margin = std::max(gridSettings.margin, s.radius);
+            leafRadii.push_back(s.radius);
+        }
+    // Cells need not be much finer than the spheres they test: a robot large against the
+    // environment (alpha-1.5) gets fewer, which build faster and stay in cache.
+    if (settings.cellsPerLeafRadius > 0.0)
+    {
+        const auto middle = leafRadii.begin() + std::ptrdiff_t(leafRadii.size() / 2);
+        std::nth_element(leafRadii.begin(), middle, leafRadii.end());
+        const double cell = *middle / settings.cellsPerLeafRadius;
+        const BoundingBox box = environment.mesh->bounds();
+        const Vec3 extent = (box.max - box.min).array() + 2.0 * gridSettings.margin;
+        const double wanted = extent.prod() / (cell * cell * cell);
+        if (wanted < double(settings.maxCells))
+            gridSettings.maxCells = std::max(GridFirstSettings::kMinimumCells, std::size_t(wanted));
+    }
     robot_ = robot.mesh;
     environment_ = environment.mesh;
     gridSettings.keepTriangles = true;

@@ -16,7 +16,11 @@ namespace hcd
 struct GridFirstSettings
 {
     std::size_t robotSpheres = 32;  ///< leaves of the robot's cover tree (at most 32; twice that for a footprint)
-    std::size_t maxCells = std::size_t(1) << 20;       ///< environment grid cells (1 byte each, 2 with solids)
+    std::size_t maxCells = std::size_t(1) << 20;  ///< environment grid cells (1 byte each, 2 with solids)
+    /// Fewer cells when the robot's cover spheres are large: cells as wide as the median leaf
+    /// sphere's radius over this (0: always maxCells), but at least kMinimumCells of them.
+    double cellsPerLeafRadius = 6.0;
+    static constexpr std::size_t kMinimumCells = std::size_t(1) << 15;
     std::size_t maxRobotCells = std::size_t(1) << 17;  ///< the robot's own grid, for a closed robot
 };
 
