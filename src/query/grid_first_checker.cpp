@@ -34,7 +34,7 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
         }
     // Cells need not be much finer than the spheres they test: a robot large against the
     // environment (alpha-1.5) gets fewer, which build faster and stay in cache.
-    if (settings.cellsPerLeafRadius > 0.0)
+    if (settings.cellsPerLeafRadius > 0.0 && !leafRadii.empty())
     {
         const auto middle = leafRadii.begin() + std::ptrdiff_t(leafRadii.size() / 2);
         std::nth_element(leafRadii.begin(), middle, leafRadii.end());
@@ -43,7 +43,8 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
         const Vec3 extent = (box.max - box.min).array() + 2.0 * gridSettings.margin;
         const double wanted = extent.prod() / (cell * cell * cell);
         if (wanted < double(settings.maxCells))
-            gridSettings.maxCells = std::max(GridFirstSettings::kMinimumCells, std::size_t(wanted));
+            gridSettings.maxCells =
+                std::min(settings.maxCells, std::max(GridFirstSettings::kMinimumCells, std::size_t(wanted)));
     }
     robot_ = robot.mesh;
     environment_ = environment.mesh;
@@ -166,6 +167,19 @@ std::vector<HierarchyReport> GridFirstChecker::hierarchies(bool withVolumeRatios
         r.memoryBytes = grid_.memoryBytes() + cover_.size() * sizeof(CoverSphere);
         reports.push_back(r);
     }
+    if (!footprintCover_.empty())
+    {
+        HierarchyReport r;
+        const auto cells = footprintGrid_.cells();
+        r.label = "footprint grid " + std::to_string(cells[0]) + "x" + std::to_string(cells[1]) + " (" +
+                  std::to_string(footprintGrid_.occupiedCells()) + " occupied), robot " +
+                  std::to_string(footprintCover_.size()) + " circles";
+        r.nodes = std::size_t(cells[0]) * cells[1] * cells[2];
+        r.depth = 1;
+        r.buildSeconds = footprintGrid_.buildSeconds();
+        r.memoryBytes = footprintGrid_.memoryBytes() + footprintCover_.size() * sizeof(CoverSphere);
+        reports.push_back(r);
+    }
     return reports;
 }
 
@@ -178,7 +192,9 @@ bool cutBelowRootClears(const std::vector<CoverSphere> &cover, Clears &&clears)
 {
     if (cover[0].firstChild < 0)
         return false;
-    int stack[64];
+    // Each pop pushes at most two: the stack never holds more than the tree's depth plus one
+    // (covers have at most 64 leaves, so a depth below 64).
+    int stack[128];
     int size = 0;
     stack[size++] = cover[0].firstChild + 1;
     stack[size++] = cover[0].firstChild;
@@ -209,11 +225,11 @@ std::optional<bool> GridFirstChecker::freeByFootprint(const RigidTransform &worl
 {
     if (footprintCover_.empty() || !isPlanarPose(worldFromRobot))
         return std::nullopt;
+    const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     // Every robot point's slack must stay below the height margin: the triangles left out are
     // farther than that.
-    if (!(translationSlack + radialSlack * robotReach_ < footprintHeightMargin_))
+    if (!(translationSlack + radialSlack * robotReach_ + rounding < footprintHeightMargin_))
         return std::nullopt;
-    const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     const auto clears = [&](const CoverSphere &s) {
         // A robot point over this circle lies within sqrt((|c| + r)^2 + z^2) of the robot origin.
         double slack = translationSlack;

@@ -66,11 +66,11 @@ double SolidSemanticsChecker::doDistance(const RigidTransform &worldFromRobot, Q
 {
     if (!worldFromRobot.isFinite())
         return 0.0;
-    // The collision answer first: a robot inside a solid is at distance 0 without the surfaces'
-    // branch and bound.
-    if (doCollides(worldFromRobot, context))
+    // Containment first (a few point-in-solid tests): a robot inside a solid is at distance 0
+    // without the surfaces' branch and bound, which answers touching surfaces itself.
+    if (contained(worldFromRobot))
         return 0.0;
-    return surface_->distanceOfFreePose(worldFromRobot, context);
+    return surface_->distance(worldFromRobot, context);
 }
 
 bool SolidSemanticsChecker::doWithinDistance(const RigidTransform &worldFromRobot, double delta,

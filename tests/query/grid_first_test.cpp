@@ -108,10 +108,15 @@ Verdicts expectAgreement(const CollisionScene &scene, ContactSemantics semantics
     if (!grid)
         return v;
     QueryContext context;
+    std::size_t index = 0;
     for (const RigidTransform &pose : poses)
     {
         const bool truth = reference->collides(pose);
         EXPECT_EQ(checker->collides(pose, context), truth);
+        // Distance through the grid's proofs (0 on a proved collision, no collision pass on a
+        // proved-free pose), bit for bit, on every fourth pose (the reference is quadratic).
+        if (index++ % 4 == 0)
+            EXPECT_EQ(checker->distance(pose, context), reference->distance(pose));
         const bool freeProved = grid->freeByGrid(pose);
         const bool collidingProved = grid->collidingByGrid(pose);
         const bool witnessProved = grid->collidingByWitness(pose);
@@ -446,25 +451,32 @@ TEST(GridFirst, PlanarScenesAgreeWithBruteForce)
                 poses.push_back(in);
                 poses.push_back(out);
             }
-            for (int i = 0; i < test::cases(60); ++i)
+            // Not planar: tilted or lifted copies of the poses so far (near contact included),
+            // lifted by a hair or far enough to reach the ceiling or sink into the floor.
+            const std::size_t planarCount = poses.size();
+            for (std::size_t i = 0; i < planarCount; i += 3)
             {
-                RigidTransform tilted = planar();
+                RigidTransform moved = poses[i];
                 if (i % 2 == 0)
-                    tilted.rotation =
-                        Eigen::AngleAxisd(1e-3 * u(rng), Vec3::UnitX()).toRotationMatrix() * tilted.rotation;
+                    moved.rotation =
+                        Eigen::AngleAxisd(1e-3 * u(rng), Vec3::UnitX()).toRotationMatrix() * moved.rotation;
                 else
-                    tilted.translation.z() = 1e-9 * scale * u(rng);
-                poses.push_back(tilted);
+                    moved.translation.z() = (i % 4 == 1 ? 1e-9 * scale : 0.3 * reach) * u(rng);
+                poses.push_back(moved);
             }
             const Verdicts v = expectAgreement(scene, semantics, poses);
             EXPECT_GT(v.freeProved, v.free / 3) << "scale " << scale;
             EXPECT_GT(v.colliding, test::cases(300) / 15) << "scale " << scale;  // 20 unsanitized
 
-            // Swept proximity on planar poses: a proof with slack t and radial rate r means the exact
-            // distance exceeds t + r * reach.
-            const auto checker = makeChecker("obb", scene);
+            // Swept proximity on planar poses: a proof with slack t and radial rate r means no robot
+            // point p comes within t + r |p|: checked at every robot vertex (the exact distance
+            // from it), and for the whole robot against t.
+            CheckerOptions options;
+            options.semantics = semantics;
+            const auto checker = makeChecker("obb", scene, options);
             const auto *grid = dynamic_cast<const GridFirstChecker *>(checker.get());
             ASSERT_NE(grid, nullptr);
+            const auto surfaces = makeChecker("bruteforce", scene, ContactSemantics::SurfaceOnly);
             int proved = 0;
             for (int i = 0; i < test::cases(300); ++i)
             {
@@ -473,7 +485,11 @@ TEST(GridFirst, PlanarScenesAgreeWithBruteForce)
                 if (!grid->freeByGrid(pose, slack, radial))
                     continue;
                 ++proved;
-                EXPECT_GT(brute->distance(pose), slack + radial * reach - 1e-12 * scale) << i;
+                EXPECT_GT(surfaces->distance(pose), slack - 1e-12 * scale) << i;
+                if (semantics == ContactSemantics::Solid)
+                    EXPECT_FALSE(brute->collides(pose)) << i;
+                for (const Vec3 &v : robot.vertices)
+                    EXPECT_GT(pointMeshDistance(env, pose.apply(v)), slack + radial * v.norm() - 1e-12 * scale) << i;
             }
             EXPECT_GT(proved, test::cases(300) / 10) << "scale " << scale;
         }

@@ -112,8 +112,8 @@ private:
     /// least (code - 1) half cells from the surface; 128..255: inside a solid, (code - 128) half
     /// cells. One byte per cell, so that the codes every proof reads stay in cache.
     std::vector<std::uint8_t> cellBytes_;
-    /// With markers, per cell, the distance to the nearest marker, >= code cells (saturating at
-    /// 255); read far less often, so kept apart.
+    /// With markers, per cell, a lower bound on the distance to the nearest marker in whole cells
+    /// (the byte's value, saturating at 255); read far less often, so kept apart.
     std::vector<std::uint8_t> markerBytes_;
     /// Kept triangles: bit i % 64 of occupiedMask_[i / 64] marks occupied cell i; occupiedBefore_
     /// counts occupied cells of earlier words, so a cell's rank indexes occupiedTriangle_.

@@ -16,7 +16,9 @@ namespace hcd
 struct GridFirstSettings
 {
     std::size_t robotSpheres = 32;  ///< leaves of the robot's cover tree (at most 32; twice that for a footprint)
-    std::size_t maxCells = std::size_t(1) << 20;  ///< environment grid cells (1 byte each, 2 with solids)
+    std::size_t maxCells =
+        std::size_t(1)
+        << 20;  ///< environment grid cells (1 byte each, 2 with a closed robot); a footprint grid as many
     /// Fewer cells when the robot's cover spheres are large: cells as wide as the median leaf
     /// sphere's radius over this (0: always maxCells), but at least kMinimumCells of them.
     double cellsPerLeafRadius = 6.0;
@@ -24,12 +26,16 @@ struct GridFirstSettings
     std::size_t maxRobotCells = std::size_t(1) << 17;  ///< the robot's own grid, for a closed robot
 };
 
-/// Two proofs before the exact checker:
-/// - free: a cut of the robot's cover tree (root first, children of a sphere that fails) lies in grid cells whose
-/// clearance exceeds its radius (so no
-///   robot triangle touches the environment) and, with solid semantics, on the outside of every
+/// Proofs before the exact checker:
+/// - free: a cut of the robot's cover tree (root first, children of a sphere that fails) lies in
+///   grid cells whose clearance exceeds its radius (so no robot triangle touches the
+///   environment) and, with solid semantics, on the outside of every
 ///   closed environment solid; for a closed robot, no environment component's first vertex lies
 ///   within the robot's reach of its origin (so none is inside the robot). Then the robot is free.
+/// - free, planar scenes (CollisionScene::planarPoses) and planar poses: the same with circles over
+///   the robot's shadow in a footprint grid of the shadows of the environment triangles at the
+///   robot's height (buildFootprint), and, with solids, one probe vertex per robot component in a
+///   3D cell outside every solid.
 /// - colliding (solid semantics only): a robot vertex lies in a free grid cell inside a closed
 ///   environment solid; or, for a closed robot, the point of an environment triangle nearest a
 ///   robot cover sphere's centre lies in a free cell of the robot's own grid (robot frame) inside
