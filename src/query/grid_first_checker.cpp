@@ -151,35 +151,32 @@ void GridFirstChecker::indexLeafTriangles()
     leafStart_[cover_.size()] = std::uint32_t(leafTriangles_.size());
 }
 
+namespace
+{
+/// One `inspect` line for a grid and the cover tested against it.
+HierarchyReport gridReport(const std::string &name, const ClearanceGrid &grid, const std::vector<CoverSphere> &cover,
+                           const std::string &coverName)
+{
+    HierarchyReport r;
+    const auto cells = grid.cells();
+    r.label = name + " " + std::to_string(cells[0]) + "x" + std::to_string(cells[1]) + "x" + std::to_string(cells[2]) +
+              " (" + std::to_string(grid.occupiedCells()) + " occupied), robot " + std::to_string(cover.size()) + " " +
+              coverName;
+    r.nodes = std::size_t(cells[0]) * cells[1] * cells[2];
+    r.depth = 1;
+    r.buildSeconds = grid.buildSeconds();
+    r.memoryBytes = grid.memoryBytes() + cover.size() * sizeof(CoverSphere);
+    return r;
+}
+}  // namespace
+
 std::vector<HierarchyReport> GridFirstChecker::hierarchies(bool withVolumeRatios) const
 {
     std::vector<HierarchyReport> reports = exact_->hierarchies(withVolumeRatios);
     if (!grid_.empty())
-    {
-        HierarchyReport r;
-        const auto cells = grid_.cells();
-        r.label = "environment clearance grid " + std::to_string(cells[0]) + "x" + std::to_string(cells[1]) + "x" +
-                  std::to_string(cells[2]) + " (" + std::to_string(grid_.occupiedCells()) + " occupied), robot " +
-                  std::to_string(cover_.size()) + " spheres";
-        r.nodes = std::size_t(cells[0]) * cells[1] * cells[2];
-        r.depth = 1;
-        r.buildSeconds = grid_.buildSeconds();
-        r.memoryBytes = grid_.memoryBytes() + cover_.size() * sizeof(CoverSphere);
-        reports.push_back(r);
-    }
+        reports.push_back(gridReport("environment clearance grid", grid_, cover_, "spheres"));
     if (!footprintCover_.empty())
-    {
-        HierarchyReport r;
-        const auto cells = footprintGrid_.cells();
-        r.label = "footprint grid " + std::to_string(cells[0]) + "x" + std::to_string(cells[1]) + " (" +
-                  std::to_string(footprintGrid_.occupiedCells()) + " occupied), robot " +
-                  std::to_string(footprintCover_.size()) + " circles";
-        r.nodes = std::size_t(cells[0]) * cells[1] * cells[2];
-        r.depth = 1;
-        r.buildSeconds = footprintGrid_.buildSeconds();
-        r.memoryBytes = footprintGrid_.memoryBytes() + footprintCover_.size() * sizeof(CoverSphere);
-        reports.push_back(r);
-    }
+        reports.push_back(gridReport("footprint grid", footprintGrid_, footprintCover_, "circles"));
     return reports;
 }
 
