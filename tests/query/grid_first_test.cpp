@@ -478,7 +478,9 @@ TEST(GridFirst, PlanarScenesAgreeWithBruteForce)
             ASSERT_NE(grid, nullptr);
             const auto surfaces = makeChecker("bruteforce", scene, ContactSemantics::SurfaceOnly);
             int proved = 0;
-            for (int i = 0; i < test::cases(300); ++i)
+            // A fixed count (24 robot vertices against a few hundred triangles: cheap under the
+            // sanitizers too); the floor on proofs below needs it.
+            for (int i = 0; i < 300; ++i)
             {
                 const RigidTransform pose = planar();
                 const double slack = 0.03 * scale * (i % 5), radial = 0.05 * (i % 3);
@@ -491,6 +493,6 @@ TEST(GridFirst, PlanarScenesAgreeWithBruteForce)
                 for (const Vec3 &v : robot.vertices)
                     EXPECT_GT(pointMeshDistance(env, pose.apply(v)), slack + radial * v.norm() - 1e-12 * scale) << i;
             }
-            EXPECT_GT(proved, test::cases(300) / 10) << "scale " << scale;
+            EXPECT_GT(proved, 30) << "scale " << scale;
         }
 }
