@@ -255,10 +255,10 @@ std::int64_t ClearanceGrid::triangleNear(const Vec3 &p) const
 {
     if (occupiedMask_.empty())
         return -1;
-    const std::int64_t cell = locate(p).index;
-    if (cell < 0)
+    const CellPoint cell = locate(p);
+    if (!cell.inGrid)
         return -1;
-    const auto i = std::size_t(cell);
+    const std::size_t i = cell.index;
     const std::uint64_t word = occupiedMask_[i / 64];
     const std::uint64_t bit = std::uint64_t(1) << (i % 64);
     if (!(word & bit))

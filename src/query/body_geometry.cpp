@@ -35,8 +35,7 @@ bool boxesOverlap(const BoundingBox &a, const BoundingBox &b)
 // Euclidean distance between boxes (0 when they overlap); boxes may be infinite.
 double boxDistance(const BoundingBox &a, const BoundingBox &b)
 {
-    const Vec3 gap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero());
-    return gap.norm();
+    return boxSeparation(a.min, a.max, b.min, b.max).norm();
 }
 
 // Per-context scratch of body queries.

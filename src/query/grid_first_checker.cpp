@@ -6,6 +6,7 @@
 #include "hybridcd/query/solid_semantics_checker.h"
 
 #include <algorithm>
+#include <optional>
 
 namespace hcd
 {
@@ -50,34 +51,31 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     environment_ = environment.mesh;
     gridSettings.keepTriangles = true;
     indexLeafTriangles();
+    std::optional<SolidQuery> robotSolids;  // with solid semantics, the robot's closed components
     if (solid_)
     {
         // The solid wrapper's indexes when the exact checker is one (as the catalogue makes it):
         // the same solids, found once.
         const auto *wrapper = dynamic_cast<const SolidSemanticsChecker *>(exact_.get());
         const SolidQuery environmentSolids = wrapper ? wrapper->environmentSolids() : SolidQuery(environment.mesh);
-        const SolidQuery robotSolids = wrapper ? wrapper->robotSolids() : SolidQuery(robot.mesh);
-        robotHasSolids_ = robotSolids.closedComponentCount() > 0;
+        robotSolids = wrapper ? wrapper->robotSolids() : SolidQuery(robot.mesh);
+        robotHasSolids_ = robotSolids->closedComponentCount() > 0;
         environmentHasSolids_ = environmentSolids.closedComponentCount() > 0;
         if (robotHasSolids_)
         {
             ClearanceGridSettings robotSettings;
             robotSettings.maxCells = settings.maxRobotCells;
-            robotGrid_ = ClearanceGrid(*robot.mesh, &robotSolids, {}, robotSettings);
+            robotGrid_ = ClearanceGrid(*robot.mesh, &*robotSolids, {}, robotSettings);
         }
         grid_ = ClearanceGrid(*environment.mesh, &environmentSolids,
                               robotHasSolids_ ? firstVertexOfEachComponent(environmentSolids) : std::vector<Vec3>{},
                               gridSettings);
-        if (scene.planarPoses)
-            buildFootprint(*robot.mesh, *environment.mesh, environmentHasSolids_ ? &robotSolids : nullptr,
-                           settings.robotSpheres, settings.maxCells);
     }
     else
-    {
         grid_ = ClearanceGrid(*environment.mesh, nullptr, {}, gridSettings);
-        if (scene.planarPoses)
-            buildFootprint(*robot.mesh, *environment.mesh, nullptr, settings.robotSpheres, settings.maxCells);
-    }
+    if (scene.planarPoses)
+        buildFootprint(*robot.mesh, *environment.mesh, environmentHasSolids_ ? &*robotSolids : nullptr,
+                       settings.robotSpheres, settings.maxCells);
 }
 
 void GridFirstChecker::buildFootprint(const TriangleMesh &robot, const TriangleMesh &environment,

@@ -379,7 +379,7 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
             // Two triangles: their own world boxes are tighter than a robot volume re-boxed or turned.
             const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle]);
             const TriangleBounds &b = environmentTriangleBounds_[environmentTree_.triangleOrder()[en.firstTriangle]];
-            const double boxGap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(0.0).norm() - tolerance;
+            const double boxGap = boxSeparation(a.min, a.max, b.min, b.max).norm() - tolerance;
             // An axis-aligned robot leaf re-boxed holds the triangle's own box: its bound is no better.
             if (boxGap >= best || std::is_same_v<Volume, Aabb>)
                 return std::max(sphereGap, boxGap);

@@ -91,14 +91,22 @@ public:
     double buildSeconds() const { return buildSeconds_; }
 
 private:
-    /// The cell holding a point: its index (-1 beyond the grid, or for a non-finite point) and the
-    /// point's distance from the cell's centre, in cells.
+    /// The cell holding a point, or `inGrid` false beyond the grid (and for a non-finite point):
+    /// the cell's index and the point's coordinates in cells from the grid's origin.
     struct CellPoint
     {
-        std::int64_t index = -1;
-        double offCentre = 0.0;
+        bool inGrid = false;
+        std::size_t index = 0;
+        Vec3 coordinates = Vec3::Zero();
+        std::size_t ix = 0, iy = 0, iz = 0;  ///< the cell's place along x, y and z
+        /// The point's offset from its cell's centre, in cells (computed only where a proof needs it).
+        Vec3 offCentre() const { return coordinates - Vec3(double(ix) + 0.5, double(iy) + 0.5, double(iz) + 0.5); }
     };
     CellPoint locate(const Vec3 &p) const;
+    /// Per axis, how far p lies beyond the mesh's bounding box (zero within it), in world units.
+    Vec3 gapToMeshBox(const Vec3 &p) const { return boxSeparation(p, p, meshMin_, meshMax_); }
+    /// Slack for rounding in p's cell and in the distances read for it, in world units.
+    double slackAt(const Vec3 &p) const { return roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff(); }
 
     Vec3 origin_ = Vec3::Zero();
     Vec3 meshMin_ = Vec3::Zero(), meshMax_ = Vec3::Zero();
@@ -130,9 +138,12 @@ inline ClearanceGrid::CellPoint ClearanceGrid::locate(const Vec3 &p) const
     CellPoint c;
     if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < nx_ && f.y() < ny_ && f.z() < nz_))
         return c;
-    const std::size_t ix = std::size_t(f.x()), iy = std::size_t(f.y()), iz = std::size_t(f.z());
-    c.index = std::int64_t((iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix);
-    c.offCentre = (f - Vec3(double(ix) + 0.5, double(iy) + 0.5, double(iz) + 0.5)).norm();
+    c.ix = std::size_t(f.x());
+    c.iy = std::size_t(f.y());
+    c.iz = std::size_t(f.z());
+    c.inGrid = true;
+    c.index = (c.iz * std::size_t(ny_) + c.iy) * std::size_t(nx_) + c.ix;
+    c.coordinates = f;
     return c;
 }
 
@@ -145,57 +156,51 @@ inline ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         s.outside = true;
         return s;
     }
-    const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
+    const double slack = slackAt(p);
     const CellPoint cell = locate(p);
-    if (cell.index < 0)
+    if (!cell.inGrid)
     {
         // Beyond the grid: the mesh's bounding box bounds everything, solids and markers included.
-        const Vec3 gap = (meshMin_ - p).cwiseMax(p - meshMax_).cwiseMax(Vec3::Zero());
-        const double d = gap.norm() * (1.0 - 1e-12) - slack;  // NaN stays "unknown"
+        const double d = gapToMeshBox(p).norm() * (1.0 - 1e-12) - slack;  // NaN stays "unknown"
         s.clearance = d > 0.0 ? d : 0.0;
         s.outside = d > 0.0;
         s.markerClearance = hasMarkers_ ? s.clearance : std::numeric_limits<double>::infinity();
         return s;
     }
-    const auto i = std::size_t(cell.index);
-    const std::uint8_t code = cellBytes_[i];
+    const std::uint8_t code = cellBytes_[cell.index];
     if (code != 0)
     {
         const bool inside = code >= 128;
         // Less p's own distance from its cell's centre (its rounding is within `slack`).
-        s.clearance = std::max(0.0, ((inside ? code - 128 : code - 1) * 0.5 - cell.offCentre) * cellSize_ - slack);
+        s.clearance =
+            std::max(0.0, ((inside ? code - 128 : code - 1) * 0.5 - cell.offCentre().norm()) * cellSize_ - slack);
         s.inside = labelled_ && inside;
         s.outside = labelled_ && !inside;
     }
-    s.markerClearance =
-        hasMarkers_ ? std::max(0.0, markerBytes_[i] * cellSize_ - slack) : std::numeric_limits<double>::infinity();
+    s.markerClearance = hasMarkers_ ? std::max(0.0, markerBytes_[cell.index] * cellSize_ - slack)
+                                    : std::numeric_limits<double>::infinity();
     return s;
 }
+
 inline bool ClearanceGrid::clears(const Vec3 &p, double reach, bool outside) const
 {
     if (cellBytes_.empty())
         return true;
-    const Vec3 f = (p - origin_) * inverseCellSize_;
-    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < nx_ && f.y() < ny_ && f.z() < nz_))
+    const CellPoint cell = locate(p);
+    if (!cell.inGrid)
     {
         // Beyond the grid (or not finite): at()'s box distance, |gap| (1 - 1e-12) - slack > reach
         // (which also puts p outside), squared, with 1e-9 to spare for rounding.
-        const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
-        const double need = (reach + slack) * (1.0 + 1e-9);
-        return (meshMin_ - p).cwiseMax(p - meshMax_).cwiseMax(Vec3::Zero()).squaredNorm() > need * need;
+        const double need = (reach + slackAt(p)) * (1.0 + 1e-9);
+        return gapToMeshBox(p).squaredNorm() > need * need;
     }
-    const std::size_t ix = std::size_t(f.x()), iy = std::size_t(f.y()), iz = std::size_t(f.z());
-    const std::uint8_t code = cellBytes_[(iz * std::size_t(ny_) + iy) * std::size_t(nx_) + ix];
+    const std::uint8_t code = cellBytes_[cell.index];
     const bool inside = code >= 128;
     if (code == 0 || (outside && (inside || !labelled_)))
         return false;
     // at(): (units / 2 - offCentre) * cellSize - slack > reach, i.e. offCentre < room (in cells),
     // less 1e-9 of a cell, so that rounding never lets this clear where at() would not.
-    const double slack = roundingSlack_ + 1e-9 * p.cwiseAbs().maxCoeff();
-    const double room = (inside ? code - 128 : code - 1) * 0.5 - (reach + slack) * inverseCellSize_ - 1e-9;
-    if (!(room > 0.0))
-        return false;
-    const Vec3 off = f - Vec3(double(ix) + 0.5, double(iy) + 0.5, double(iz) + 0.5);
-    return off.squaredNorm() < room * room;
+    const double room = (inside ? code - 128 : code - 1) * 0.5 - (reach + slackAt(p)) * inverseCellSize_ - 1e-9;
+    return room > 0.0 && cell.offCentre().squaredNorm() < room * room;
 }
 }  // namespace hcd

@@ -27,6 +27,13 @@ struct BoundingBox
     bool empty() const { return (min.array() > max.array()).any(); }
 };
 
+/// Per axis, the gap between the boxes [aMin, aMax] and [bMin, bMax] (zero where their ranges
+/// overlap); its norm is the Euclidean distance between the boxes. A point is a box of no extent.
+inline Vec3 boxSeparation(const Vec3 &aMin, const Vec3 &aMax, const Vec3 &bMin, const Vec3 &bMax)
+{
+    return (aMin - bMax).cwiseMax(bMin - aMax).cwiseMax(Vec3::Zero());
+}
+
 /// Triangles over a shared vertex array, in the mesh's own frame. Triangles are never degenerate
 /// when the mesh comes from the loader (those are dropped and counted there).
 struct TriangleMesh
