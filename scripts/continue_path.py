@@ -178,17 +178,19 @@ def repair(checker, path, rng, reach, max_depth):
     return None
 
 
+def cfg_values(cfg):
+    """The key = value lines of a .cfg file (sections ignored)."""
+    values = {}
+    with open(cfg) as f:
+        for line in f:
+            if '=' in line:
+                key, value = line.split('=', 1)
+                values[key.strip()] = value.strip()
+    return values
+
+
 def alpha_stage_files(from_cfg, to_cfg, workdir, fractions):
     """Problem files whose environment moves from from_cfg's alpha mesh towards to_cfg's."""
-    def cfg_values(cfg):
-        values = {}
-        with open(cfg) as f:
-            for line in f:
-                if '=' in line:
-                    key, value = line.split('=', 1)
-                    values[key.strip()] = value.strip()
-        return values
-
     def node_matrix(dae):
         text = open(dae).read()
         found = re.search(r'<matrix>([^<]*)</matrix>', text)
@@ -233,12 +235,7 @@ def alpha_stage_files(from_cfg, to_cfg, workdir, fractions):
 
 def endpoint(cfg, which):
     """The start or goal pose of an SE(3) .cfg (theta about axis), as x y z qx qy qz qw."""
-    values = {}
-    with open(cfg) as f:
-        for line in f:
-            if '=' in line:
-                key, value = line.split('=', 1)
-                values[key.strip()] = value.strip()
+    values = cfg_values(cfg)
     get = lambda key: float(values[f'{which}.{key}'])
     axis = (get('axis.x'), get('axis.y'), get('axis.z'))
     norm = math.sqrt(sum(c * c for c in axis))
