@@ -77,16 +77,24 @@ def pose_text(p):
 
 
 def read_path(filename):
+    """The poses of a 3D .path file (x y z qx qy qz qw per line; '#' lines and blank lines skipped)."""
     poses = []
     with open(filename) as f:
-        for line in f:
+        for number, line in enumerate(f, 1):
             line = line.strip()
             if not line or line.startswith('#'):
                 continue
-            values = [float(v) for v in line.split()]
+            try:
+                values = [float(v) for v in line.split()]
+            except ValueError:
+                sys.exit(f'{filename}:{number}: a pose holds numbers only (x y z qx qy qz qw)')
             if len(values) != 7:
-                sys.exit(f'{filename}: expected 7 numbers per pose (x y z qx qy qz qw), got {len(values)}')
+                sys.exit(f'{filename}:{number}: expected 7 numbers per pose (x y z qx qy qz qw), got {len(values)}')
+            if not all(math.isfinite(v) for v in values) or not any(values[3:]):
+                sys.exit(f'{filename}:{number}: numbers must be finite and the quaternion non-zero')
             poses.append(tuple(values[:3]) + quat_normalized(tuple(values[3:])))
+    if len(poses) < 2:
+        sys.exit(f'{filename}: a path needs at least two poses, found {len(poses)}')
     return poses
 
 
@@ -191,22 +199,39 @@ def cfg_values(cfg):
 
 def alpha_stage_files(from_cfg, to_cfg, workdir, fractions):
     """Problem files whose environment moves from from_cfg's alpha mesh towards to_cfg's."""
+    def not_alpha(dae, what):
+        sys.exit(f'{dae}: {what}: --stages alpha needs two of OMPL.app\'s alpha_env-1.X.dae meshes')
+
     def node_matrix(dae):
-        text = open(dae).read()
+        with open(dae) as f:
+            text = f.read()
         found = re.search(r'<matrix>([^<]*)</matrix>', text)
+        if not found or len(found.group(1).split()) != 16:
+            not_alpha(dae, 'no node matrix of 16 numbers')
         return text, [float(v) for v in found.group(1).split()]
 
-    def raw_y_range(text):
-        values = [float(v) for v in re.search(r'<float_array id="ID11"[^>]*>([^<]*)<', text).group(1).split()]
-        ys = values[1::3]
-        return min(ys), max(ys)
+    def raw_ranges(dae, text):
+        """Per raw axis, the (min, max) of the vertex array ID11."""
+        found = re.search(r'<float_array id="ID11"[^>]*>([^<]*)<', text)
+        if not found or len(found.group(1).split()) < 3:
+            not_alpha(dae, 'no vertex array ID11')
+        values = [float(v) for v in found.group(1).split()]
+        return [(min(values[axis::3]), max(values[axis::3])) for axis in range(3)]
 
     folder = os.path.dirname(os.path.abspath(to_cfg))
     source_values, target_values = cfg_values(from_cfg), cfg_values(to_cfg)
+    for cfg, values in ((from_cfg, source_values), (to_cfg, target_values)):
+        if 'world' not in values:
+            sys.exit(f'{cfg}: no "world = ..." line')
     source_text, m_from = node_matrix(os.path.join(folder, source_values['world']))
     target_text, m_to = node_matrix(os.path.join(folder, target_values['world']))
-    y_lo_from, y_hi_from = raw_y_range(source_text)
-    y_lo_to, y_hi_to = raw_y_range(target_text)
+    ranges_from = raw_ranges(source_values['world'], source_text)
+    ranges_to = raw_ranges(target_values['world'], target_text)
+    # The alpha puzzles' obstacles differ only along raw y (the gap); anything else is not a pair.
+    for axis in (0, 2):
+        if any(abs(a - b) > 1e-6 * (1.0 + abs(a)) for a, b in zip(ranges_from[axis], ranges_to[axis])):
+            not_alpha(target_values['world'], f'its raw extent along axis {axis} differs from {source_values["world"]}\'s')
+    (y_lo_from, y_hi_from), (y_lo_to, y_hi_to) = ranges_from[1], ranges_to[1]
     # World y of the target: m_to[5] * raw + m_to[7]. The source's raw range maps onto it with
     # scale k and offset b.
     k = m_to[5] * (y_hi_to - y_lo_to) / (y_hi_from - y_lo_from)
@@ -236,7 +261,13 @@ def alpha_stage_files(from_cfg, to_cfg, workdir, fractions):
 def endpoint(cfg, which):
     """The start or goal pose of an SE(3) .cfg (theta about axis), as x y z qx qy qz qw."""
     values = cfg_values(cfg)
-    get = lambda key: float(values[f'{which}.{key}'])
+
+    def get(key):
+        try:
+            return float(values[f'{which}.{key}'])
+        except (KeyError, ValueError):
+            sys.exit(f'{cfg}: no number for {which}.{key} (continue_path plans SE(3) problems)')
+
     axis = (get('axis.x'), get('axis.y'), get('axis.z'))
     norm = math.sqrt(sum(c * c for c in axis))
     theta = get('theta')
@@ -259,8 +290,23 @@ def main():
     parser.add_argument('--cli', default=os.path.join(os.path.dirname(os.path.abspath(__file__)), '..',
                                                       'build', 'hybridcd'))
     args = parser.parse_args()
+    if args.steps < 1 or args.max_depth < 0 or not args.reach > 0:
+        sys.exit('continue_path: --steps must be at least 1, --max-depth at least 0 and --reach positive')
+    if not os.access(args.cli, os.X_OK):
+        sys.exit(f'continue_path: no hybridcd tool at {args.cli} (build it, or name it with --cli)')
+    out_folder = os.path.dirname(os.path.abspath(args.out))
+    if not os.path.isdir(out_folder) or not os.access(out_folder, os.W_OK):
+        sys.exit(f'continue_path: cannot write into {out_folder}')
+    try:
+        run(args)
+    except OSError as error:
+        sys.exit(f'continue_path: {error.filename}: {error.strerror}')
+
+
+def run(args):
     rng = random.Random(args.seed)
     path = read_path(args.from_path)
+    start, goal = endpoint(args.to_cfg, 'start'), endpoint(args.to_cfg, 'goal')
     with tempfile.TemporaryDirectory() as workdir:
         done, step = 0.0, 1.0 / args.steps
         while done < 1.0:
@@ -268,28 +314,35 @@ def main():
             if target >= 1.0 - 1e-12:
                 cfg = os.path.abspath(args.to_cfg)
                 # The target's own start and goal close the path; the motions to them are repaired too.
-                path = [endpoint(args.to_cfg, 'start')] + path[1:-1] + [endpoint(args.to_cfg, 'goal')]
+                candidate = [start] + path[1:-1] + [goal]
             else:
                 cfg = alpha_stage_files(args.from_cfg, args.to_cfg, workdir, [target])[0]
-            stage_dir = tempfile.mkdtemp(dir=workdir)
-            repaired = repair(Checker(args.cli, cfg, stage_dir), path, rng, args.reach, args.max_depth)
+                candidate = path
+            repaired = repair(Checker(args.cli, cfg, tempfile.mkdtemp(dir=workdir)), candidate, rng, args.reach,
+                              args.max_depth)
             if repaired is None:
                 step /= 2
                 print(f'stage {target:.4f} failed; step now {step:.5f}', flush=True)
                 if step < 1e-3:
-                    sys.exit('continuation stalled: no repair at the smallest step')
+                    sys.exit('continuation stalled: no repair at the smallest step; nothing written')
                 continue
             path, done = repaired, target
             print(f'stage {done:.4f}: {len(path)} poses', flush=True)
             step = min(step * 1.5, 0.25)
-    final = Checker(args.cli, os.path.abspath(args.to_cfg), tempfile.mkdtemp())
-    if not (all(final.free(path)) and all(final.motions_free(list(zip(path[:-1], path[1:]))))):
-        sys.exit(f'the repaired path does not verify on {args.to_cfg}; nothing written')
+        # Verified once more as a whole, on the target problem itself, before anything is written.
+        final = Checker(args.cli, os.path.abspath(args.to_cfg), tempfile.mkdtemp(dir=workdir))
+        if not (all(final.free(path)) and all(final.motions_free(list(zip(path[:-1], path[1:]))))):
+            sys.exit(f'the repaired path does not verify on {args.to_cfg}; nothing written')
     tmp = args.out + '.tmp'
-    with open(tmp, 'w') as f:
-        for p in path:
-            f.write(pose_text(p) + '\n')
-    os.replace(tmp, args.out)
+    try:
+        with open(tmp, 'w') as f:
+            for p in path:
+                f.write(pose_text(p) + '\n')
+        os.replace(tmp, args.out)
+    except OSError:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
     print(f'wrote {args.out}: {len(path)} poses, every pose free and every motion certified')
 
 
