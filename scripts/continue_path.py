@@ -308,6 +308,7 @@ def run(args):
     path = read_path(args.from_path)
     start, goal = endpoint(args.to_cfg, 'start'), endpoint(args.to_cfg, 'goal')
     with tempfile.TemporaryDirectory() as workdir:
+        alpha_stage_files(args.from_cfg, args.to_cfg, workdir, [])  # refuses a pair that is not alpha puzzles
         done, step = 0.0, 1.0 / args.steps
         while done < 1.0:
             target = min(1.0, done + step)

@@ -101,6 +101,34 @@ class WithTheTool(unittest.TestCase):
         self.assertEqual(self.run_tool('check', last, '--states', listing), target)
         self.assertIn('0', target)  # alpha-1.1's path does not fit alpha-1.0: the stages matter
 
+    def test_bad_input_is_refused_with_file_and_line_and_nothing_written(self):
+        script = os.path.join(SOURCE, 'scripts', 'continue_path.py')
+        bad = os.path.join(self.folder, 'bad.path')
+        out = os.path.join(self.folder, 'out.path')
+        cases = [('1 2 3 0 0 0 1\n1 2 x 0 0 0 1\n', f'{bad}:2:'),
+                 ('1 2 3 0 0 0 1\n1 2 3 0 0 1\n', f'{bad}:2: expected 7 numbers'),
+                 ('1 2 3 0 0 0 0\n1 2 3 0 0 0 1\n', f'{bad}:1: numbers must be finite'),
+                 ('1 2 3 0 0 0 1\n', 'at least two poses')]
+        for text, message in cases:
+            with open(bad, 'w') as f:
+                f.write(text)
+            result = subprocess.run([sys.executable, script, '--from-cfg', os.path.join(ALPHA, 'alpha-1.1.cfg'),
+                                     '--from-path', bad, '--to-cfg', os.path.join(ALPHA, 'alpha-1.0.cfg'),
+                                     '--stages', 'alpha', '--out', out, '--cli', CLI], capture_output=True, text=True)
+            self.assertEqual(result.returncode, 1, result.stderr)
+            self.assertIn(message, result.stderr)
+            self.assertFalse(os.path.exists(out))
+        # A problem whose obstacle is not an alpha puzzle's is refused before any stage runs.
+        result = subprocess.run([sys.executable, script, '--from-cfg', os.path.join(ALPHA, 'alpha-1.1.cfg'),
+                                 '--from-path', os.path.join(ALPHA, 'alpha-1.1.path'), '--to-cfg',
+                                 os.path.join(ALPHA, 'Easy.cfg'), '--stages', 'alpha', '--steps', '1', '--out', out,
+                                 '--cli', CLI],
+                                capture_output=True, text=True)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('Easy_env.dae', result.stderr)
+        self.assertNotIn('stage', result.stdout)
+        self.assertFalse(os.path.exists(out))
+
     def test_the_gallery_path_of_alpha_1_0_is_free(self):
         cfg = os.path.join(ALPHA, 'alpha-1.0.cfg')
         path = continue_path.read_path(os.path.join(SOURCE, 'docs', 'gallery', 'alpha-1.0.path'))
