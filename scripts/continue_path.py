@@ -6,8 +6,8 @@ A path that solves one problem is repaired, stage by stage, for environments tha
 target problem's. At each stage:
   1. every colliding pose is retracted to the nearest free pose found among random perturbations
      of growing size (translation in the problem's units, rotation scaled by the robot's reach);
-  2. every motion between consecutive poses that continuous checking (`check-motion
-     --verdict-only`) does not certify free gets its midpoint (translation lerp, rotation slerp),
+  2. every motion between consecutive poses that continuous checking (`check-motion`) does not
+     certify free gets its midpoint (translation lerp, rotation slerp),
      retracted the same way, and the halves are checked again, down to a depth limit.
 A stage that cannot be repaired is split in two. The final stage is the target problem itself, so
 the path written is verified by hybridcd's own `check` and `check-motion` on the target's meshes.
@@ -197,65 +197,74 @@ def cfg_values(cfg):
     return values
 
 
-def alpha_stage_files(from_cfg, to_cfg, workdir, fractions):
-    """Problem files whose environment moves from from_cfg's alpha mesh towards to_cfg's."""
-    def not_alpha(dae, what):
-        sys.exit(f'{dae}: {what}: --stages alpha needs two of OMPL.app\'s alpha_env-1.X.dae meshes')
+class AlphaStages:
+    """Problem files whose environment moves from from_cfg's alpha mesh towards to_cfg's. Both
+    meshes are read and checked once, here; each stage only writes a new node matrix."""
 
-    def node_matrix(dae):
-        with open(dae) as f:
-            text = f.read()
-        found = re.search(r'<matrix>([^<]*)</matrix>', text)
-        if not found or len(found.group(1).split()) != 16:
-            not_alpha(dae, 'no node matrix of 16 numbers')
-        return text, [float(v) for v in found.group(1).split()]
+    def __init__(self, from_cfg, to_cfg):
+        def not_alpha(dae, what):
+            sys.exit(f'{dae}: {what}: --stages alpha needs two of OMPL.app\'s alpha_env-1.X.dae meshes')
 
-    def raw_ranges(dae, text):
-        """Per raw axis, the (min, max) of the vertex array ID11."""
-        found = re.search(r'<float_array id="ID11"[^>]*>([^<]*)<', text)
-        if not found or len(found.group(1).split()) < 3:
-            not_alpha(dae, 'no vertex array ID11')
-        values = [float(v) for v in found.group(1).split()]
-        return [(min(values[axis::3]), max(values[axis::3])) for axis in range(3)]
+        def node_matrix(dae):
+            with open(dae) as f:
+                text = f.read()
+            found = re.search(r'<matrix>([^<]*)</matrix>', text)
+            if not found or len(found.group(1).split()) != 16:
+                not_alpha(dae, 'no node matrix of 16 numbers')
+            return text, [float(v) for v in found.group(1).split()]
 
-    folder = os.path.dirname(os.path.abspath(to_cfg))
-    source_values, target_values = cfg_values(from_cfg), cfg_values(to_cfg)
-    for cfg, values in ((from_cfg, source_values), (to_cfg, target_values)):
-        if 'world' not in values:
-            sys.exit(f'{cfg}: no "world = ..." line')
-    source_text, m_from = node_matrix(os.path.join(folder, source_values['world']))
-    target_text, m_to = node_matrix(os.path.join(folder, target_values['world']))
-    ranges_from = raw_ranges(source_values['world'], source_text)
-    ranges_to = raw_ranges(target_values['world'], target_text)
-    # The alpha puzzles' obstacles differ only along raw y (the gap); anything else is not a pair.
-    for axis in (0, 2):
-        if any(abs(a - b) > 1e-6 * (1.0 + abs(a)) for a, b in zip(ranges_from[axis], ranges_to[axis])):
-            not_alpha(target_values['world'], f'its raw extent along axis {axis} differs from {source_values["world"]}\'s')
-    (y_lo_from, y_hi_from), (y_lo_to, y_hi_to) = ranges_from[1], ranges_to[1]
-    # World y of the target: m_to[5] * raw + m_to[7]. The source's raw range maps onto it with
-    # scale k and offset b.
-    k = m_to[5] * (y_hi_to - y_lo_to) / (y_hi_from - y_lo_from)
-    b = m_to[5] * y_lo_to + m_to[7] - k * y_lo_from
-    files = []
-    template = open(from_cfg).read()
-    for n, f in enumerate(fractions):
-        m = list(m_from)
-        m[3] = m_from[3] + f * (m_to[3] - m_from[3])
-        m[5] = m_from[5] + f * (k - m_from[5])
-        m[7] = m_from[7] + f * (b - m_from[7])
-        m[11] = m_from[11] + f * (m_to[11] - m_from[11])
-        matrix = ' '.join(f'{v:.9f}' for v in m)
-        dae = os.path.join(workdir, f'stage{n}_env.dae')
-        with open(dae, 'w') as out:
-            out.write(re.sub(r'<matrix>[^<]*</matrix>', f'<matrix>{matrix}</matrix>', source_text, count=1))
-        cfg = os.path.join(workdir, f'stage{n}.cfg')
-        text = re.sub(r'(?m)^world\s*=.*$', f'world = {dae}', template)
-        text = re.sub(r'(?m)^robot\s*=\s*(.*)$',
-                      lambda r: f'robot = {os.path.join(folder, r.group(1).strip())}', text)
-        with open(cfg, 'w') as out:
-            out.write(text)
-        files.append(cfg)
-    return files
+        def raw_ranges(dae, text):
+            """Per raw axis, the (min, max) of the vertex array ID11."""
+            found = re.search(r'<float_array id="ID11"[^>]*>([^<]*)<', text)
+            if not found or len(found.group(1).split()) < 3:
+                not_alpha(dae, 'no vertex array ID11')
+            values = [float(v) for v in found.group(1).split()]
+            return [(min(values[axis::3]), max(values[axis::3])) for axis in range(3)]
+
+        self.folder = os.path.dirname(os.path.abspath(to_cfg))
+        source_values, target_values = cfg_values(from_cfg), cfg_values(to_cfg)
+        for cfg, values in ((from_cfg, source_values), (to_cfg, target_values)):
+            if 'world' not in values:
+                sys.exit(f'{cfg}: no "world = ..." line')
+        self.source_text, self.m_from = node_matrix(os.path.join(self.folder, source_values['world']))
+        target_text, self.m_to = node_matrix(os.path.join(self.folder, target_values['world']))
+        ranges_from = raw_ranges(source_values['world'], self.source_text)
+        ranges_to = raw_ranges(target_values['world'], target_text)
+        # The alpha puzzles' obstacles differ only along raw y (the gap); anything else is not a pair.
+        for axis in (0, 2):
+            if any(abs(a - b) > 1e-6 * (1.0 + abs(a)) for a, b in zip(ranges_from[axis], ranges_to[axis])):
+                not_alpha(target_values['world'],
+                          f'its raw extent along axis {axis} differs from {source_values["world"]}\'s')
+        (y_lo_from, y_hi_from), (y_lo_to, y_hi_to) = ranges_from[1], ranges_to[1]
+        # World y of the target: m_to[5] * raw + m_to[7]. The source's raw range maps onto it with
+        # scale k and offset b.
+        self.k = self.m_to[5] * (y_hi_to - y_lo_to) / (y_hi_from - y_lo_from)
+        self.b = self.m_to[5] * y_lo_to + self.m_to[7] - self.k * y_lo_from
+        with open(from_cfg) as f:
+            self.template = f.read()
+
+    def files(self, workdir, fractions):
+        """One .cfg per fraction (0: from_cfg's obstacle, 1: to_cfg's placement), written into workdir."""
+        m_from, m_to = self.m_from, self.m_to
+        files = []
+        for n, f in enumerate(fractions):
+            m = list(m_from)
+            m[3] = m_from[3] + f * (m_to[3] - m_from[3])
+            m[5] = m_from[5] + f * (self.k - m_from[5])
+            m[7] = m_from[7] + f * (self.b - m_from[7])
+            m[11] = m_from[11] + f * (m_to[11] - m_from[11])
+            matrix = ' '.join(f'{v:.9f}' for v in m)
+            dae = os.path.join(workdir, f'stage{n}_env.dae')
+            with open(dae, 'w') as out:
+                out.write(re.sub(r'<matrix>[^<]*</matrix>', f'<matrix>{matrix}</matrix>', self.source_text, count=1))
+            cfg = os.path.join(workdir, f'stage{n}.cfg')
+            text = re.sub(r'(?m)^world\s*=.*$', f'world = {dae}', self.template)
+            text = re.sub(r'(?m)^robot\s*=\s*(.*)$',
+                          lambda r: f'robot = {os.path.join(self.folder, r.group(1).strip())}', text)
+            with open(cfg, 'w') as out:
+                out.write(text)
+            files.append(cfg)
+        return files
 
 
 def endpoint(cfg, which):
@@ -307,8 +316,8 @@ def run(args):
     rng = random.Random(args.seed)
     path = read_path(args.from_path)
     start, goal = endpoint(args.to_cfg, 'start'), endpoint(args.to_cfg, 'goal')
+    stages = AlphaStages(args.from_cfg, args.to_cfg)  # refuses a pair that is not alpha puzzles
     with tempfile.TemporaryDirectory() as workdir:
-        alpha_stage_files(args.from_cfg, args.to_cfg, workdir, [])  # refuses a pair that is not alpha puzzles
         done, step = 0.0, 1.0 / args.steps
         while done < 1.0:
             target = min(1.0, done + step)
@@ -317,7 +326,7 @@ def run(args):
                 # The target's own start and goal close the path; the motions to them are repaired too.
                 candidate = [start] + path[1:-1] + [goal]
             else:
-                cfg = alpha_stage_files(args.from_cfg, args.to_cfg, workdir, [target])[0]
+                cfg = stages.files(workdir, [target])[0]
                 candidate = path
             repaired = repair(Checker(args.cli, cfg, tempfile.mkdtemp(dir=workdir)), candidate, rng, args.reach,
                               args.max_depth)
@@ -330,10 +339,8 @@ def run(args):
             path, done = repaired, target
             print(f'stage {done:.4f}: {len(path)} poses', flush=True)
             step = min(step * 1.5, 0.25)
-        # Verified once more as a whole, on the target problem itself, before anything is written.
-        final = Checker(args.cli, os.path.abspath(args.to_cfg), tempfile.mkdtemp(dir=workdir))
-        if not (all(final.free(path)) and all(final.motions_free(list(zip(path[:-1], path[1:]))))):
-            sys.exit(f'the repaired path does not verify on {args.to_cfg}; nothing written')
+    # The last stage is the target problem itself, and repair() returns a path only when each of
+    # its poses was found free and every motion between them certified there: it is verified.
     tmp = args.out + '.tmp'
     try:
         with open(tmp, 'w') as f:

@@ -94,8 +94,8 @@ class WithTheTool(unittest.TestCase):
     def test_the_last_alpha_stage_is_alpha_1_0(self):
         shipped = continue_path.read_path(os.path.join(ALPHA, 'alpha-1.1.path'))
         listing = self.write_poses(shipped)
-        first, last = continue_path.alpha_stage_files(os.path.join(ALPHA, 'alpha-1.1.cfg'),
-                                                      os.path.join(ALPHA, 'alpha-1.0.cfg'), self.folder, [0.0, 1.0])
+        stages = continue_path.AlphaStages(os.path.join(ALPHA, 'alpha-1.1.cfg'), os.path.join(ALPHA, 'alpha-1.0.cfg'))
+        first, last = stages.files(self.folder, [0.0, 1.0])
         target = self.run_tool('check', os.path.join(ALPHA, 'alpha-1.0.cfg'), '--states', listing)
         self.assertEqual(self.run_tool('check', first, '--states', listing), ['1'] * len(shipped))
         self.assertEqual(self.run_tool('check', last, '--states', listing), target)
