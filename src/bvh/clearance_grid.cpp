@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/bvh/clearance_grid.h"
 
+#include "hybridcd/bvh/distance_transform.h"
 #include "hybridcd/geometry/triangle_distance.h"
 
 #include <algorithm>
@@ -12,62 +13,51 @@ namespace hcd
 {
 namespace
 {
-constexpr double kUnreached = 1e20;  // squared distance of a cell no seed reaches
+constexpr double kUnreached = kNoSeedSquaredDistance;  // squared distance of a cell no seed reaches
 constexpr double kSqrt3 = 1.7320508075688772;
 
-/// Felzenszwalb and Huttenlocher's exact 1D squared distance transform (lower envelope of
-/// parabolas), on integer inputs: the envelope breakpoints are rationals with denominators below
-/// 2n, so double rounding never changes which parabola is lowest at an integer.
-void distanceTransform1d(const double *f, int n, double *d, int *v, double *z)
+/// For each free cell (occupied[i] == 0) of an nx * ny * nz grid (x fastest), the first cell in
+/// index order of its face-connected region of free cells; occupied cells keep their own index.
+std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied, int nx, int ny, int nz)
 {
-    int k = 0;
-    v[0] = 0;
-    z[0] = -std::numeric_limits<double>::infinity();
-    z[1] = std::numeric_limits<double>::infinity();
-    for (int q = 1; q < n; ++q)
-    {
-        double s = ((f[q] + double(q) * q) - (f[v[k]] + double(v[k]) * v[k])) / (2.0 * q - 2.0 * v[k]);
-        while (s <= z[k])
+    const std::size_t plane = std::size_t(nx) * ny;
+    std::vector<std::uint32_t> parent(plane * nz);
+    // Every parent precedes its child (parent[i] <= i): a root found is the region's smallest index.
+    const auto find = [&](std::uint32_t i) {
+        while (parent[i] != i)
         {
-            --k;
-            s = ((f[q] + double(q) * q) - (f[v[k]] + double(v[k]) * v[k])) / (2.0 * q - 2.0 * v[k]);
+            parent[i] = parent[parent[i]];  // path halving
+            i = parent[i];
         }
-        ++k;
-        v[k] = q;
-        z[k] = s;
-        z[k + 1] = std::numeric_limits<double>::infinity();
-    }
-    k = 0;
-    for (int q = 0; q < n; ++q)
-    {
-        while (z[k + 1] < q)
-            ++k;
-        d[q] = double(q - v[k]) * (q - v[k]) + f[v[k]];
-    }
-}
-
-/// In place: squared Euclidean distance (in cells) from each cell centre to the nearest seed
-/// (cells holding 0), separably along x, y and z.
-void distanceTransform3d(std::vector<double> &grid, int nx, int ny, int nz)
-{
-    const int longest = std::max({nx, ny, nz});
-    std::vector<double> f(longest), d(longest), z(longest + 1);
-    std::vector<int> v(longest);
-    const auto pass = [&](int n, int countA, int countB, auto index) {
-        for (int a = 0; a < countA; ++a)
-            for (int b = 0; b < countB; ++b)
-            {
-                for (int q = 0; q < n; ++q)
-                    f[q] = grid[index(q, a, b)];
-                distanceTransform1d(f.data(), n, d.data(), v.data(), z.data());
-                for (int q = 0; q < n; ++q)
-                    grid[index(q, a, b)] = std::min(d[q], kUnreached);
-            }
+        return i;
     };
-    const auto at = [nx, ny](int x, int y, int z) { return (std::size_t(z) * ny + y) * nx + x; };
-    pass(nx, ny, nz, [&](int q, int a, int b) { return at(q, a, b); });
-    pass(ny, nx, nz, [&](int q, int a, int b) { return at(a, q, b); });
-    pass(nz, nx, ny, [&](int q, int a, int b) { return at(a, b, q); });
+    const auto unite = [&](std::uint32_t a, std::uint32_t b) {
+        a = find(a);
+        b = find(b);
+        if (a < b)
+            parent[b] = a;
+        else if (b < a)
+            parent[a] = b;
+    };
+    std::uint32_t i = 0;
+    for (int z = 0; z < nz; ++z)
+        for (int y = 0; y < ny; ++y)
+            for (int x = 0; x < nx; ++x, ++i)
+            {
+                parent[i] = i;
+                if (occupied[i])
+                    continue;
+                if (x > 0 && !occupied[i - 1])
+                    parent[i] = parent[i - 1];  // already at most the left neighbour's root's depth
+                if (y > 0 && !occupied[i - nx])
+                    unite(i - std::uint32_t(nx), i);
+                if (z > 0 && !occupied[i - plane])
+                    unite(i - std::uint32_t(plane), i);
+            }
+    // In index order every parent is final before its children: one pass flattens every chain.
+    for (std::uint32_t j = 0; j < parent.size(); ++j)
+        parent[j] = parent[parent[j]];
+    return parent;
 }
 
 /// The distance from a point of a cell to any point of a seed cell whose centres are
@@ -100,7 +90,8 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     // Cubic cells; a flat mesh still gets one layer of cells across its thin side.
     const double floorExtent = std::max(extent.maxCoeff() * 1e-3, 1e-300);
     const Vec3 padded = extent.cwiseMax(Vec3::Constant(floorExtent));
-    const std::size_t maxCells = std::max<std::size_t>(settings.maxCells, 8);
+    // At most 2^31 cells: cells and occupied cells are counted in 32 bits.
+    const std::size_t maxCells = std::clamp<std::size_t>(settings.maxCells, 8, std::size_t(1) << 31);
     const auto countOf = [&](double size, double cell) { return std::max(1, int(std::ceil(size / cell))); };
     // Planar: square cells over x and y, one layer centred on z = 0.
     double h =
@@ -126,7 +117,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
 
     // Occupied cells: the triangle's bounding box, grown for rounding, cut by a slab around its
     // plane as wide as the cell's projection on the normal. Marks a superset of touched cells.
-    std::vector<double> squared(cellCount, kUnreached);
+    std::vector<std::uint8_t> occupiedCell(cellCount, 0);
     std::vector<std::uint32_t> firstTriangle(settings.keepTriangles ? cellCount : 0, ~0u);
     const double boxSlack = 1e-9 * magnitude;
     const auto shadow = [planar](const Vec3 &v) { return planar ? Vec3(v.x(), v.y(), 0.0) : v; };
@@ -154,18 +145,13 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                                : std::abs(normal.dot(centre - a)) <= reach)
                     {
                         const std::size_t i = cellIndex(x, y, z);
-                        squared[i] = 0.0;
+                        occupiedCell[i] = 1;
                         if (settings.keepTriangles && firstTriangle[i] == ~0u)
                             firstTriangle[i] = std::uint32_t(t);
                     }
                 }
     }
-    std::vector<std::uint8_t> freeCell(cellCount);
-    for (std::size_t i = 0; i < cellCount; ++i)
-    {
-        freeCell[i] = squared[i] != 0.0;
-        occupied_ += !freeCell[i];
-    }
+    occupied_ = std::size_t(std::count(occupiedCell.begin(), occupiedCell.end(), std::uint8_t(1)));
     if (settings.keepTriangles)
     {
         occupiedMask_.assign((cellCount + 63) / 64, 0);
@@ -175,7 +161,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
         {
             if (i % 64 == 0)
                 occupiedBefore_[i / 64] = count;
-            if (!freeCell[i])
+            if (occupiedCell[i])
             {
                 occupiedMask_[i / 64] |= std::uint64_t(1) << (i % 64);
                 occupiedTriangle_.push_back(firstTriangle[i]);
@@ -183,55 +169,51 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             }
         }
     }
-    distanceTransform3d(squared, nx_, ny_, nz_);
+    const std::vector<double> squared = squaredDistanceTransform(occupiedCell, nx_, ny_, nz_);
 
     // Sides: one exact point-in-solid test per face-connected region of free cells.
     std::vector<std::uint8_t> insideCell(cellCount, 0);
     labelled_ = solids != nullptr && !planar;
     if (labelled_ && solids->closedComponentCount() > 0)
     {
-        std::vector<std::uint8_t> seen(cellCount, 0);
-        std::vector<std::size_t> queue;
-        for (std::size_t seed = 0; seed < cellCount; ++seed)
+        // Face-connected regions by union-find in raster order: a free cell joins its free
+        // neighbours before it along x, y and z. Each region's root is its first cell (a root only
+        // ever joins an earlier one), which gets the point-in-solid test.
+        const std::vector<std::uint32_t> region = freeRegions(occupiedCell, nx_, ny_, nz_);
+        for (std::size_t i = 0; i < cellCount; ++i)
         {
-            if (!freeCell[seed] || seen[seed])
+            if (occupiedCell[i])
                 continue;
-            const int sx = int(seed % nx_), sy = int((seed / nx_) % ny_), sz = int(seed / (std::size_t(nx_) * ny_));
-            const bool inside = solids->insideAnySolid(origin_ + h * Vec3(sx + 0.5, sy + 0.5, sz + 0.5));
-            queue.assign(1, seed);
-            seen[seed] = 1;
-            while (!queue.empty())
+            if (region[i] != i)
             {
-                const std::size_t i = queue.back();
-                queue.pop_back();
-                insideCell[i] = inside;
-                const int x = int(i % nx_), y = int((i / nx_) % ny_), z = int(i / (std::size_t(nx_) * ny_));
-                const int neighbours[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z},
-                                              {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
-                for (const auto &n : neighbours)
-                {
-                    if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= nx_ || n[1] >= ny_ || n[2] >= nz_)
-                        continue;
-                    const std::size_t j = cellIndex(n[0], n[1], n[2]);
-                    if (freeCell[j] && !seen[j])
-                    {
-                        seen[j] = 1;
-                        queue.push_back(j);
-                    }
-                }
+                insideCell[i] = insideCell[region[i]];  // the root comes first
+                continue;
             }
+            const int x = int(i % nx_), y = int((i / nx_) % ny_), z = int(i / (std::size_t(nx_) * ny_));
+            insideCell[i] = solids->insideAnySolid(origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5));
         }
     }
     hasMarkers_ = !markers.empty() && !planar;
+    // Half cells of clearance per squared distance (an integer): from 65^2 cells on the codes
+    // saturate, so a table of the smaller ones spares a square root per cell.
+    constexpr std::size_t kTabled = 65 * 65;
+    std::vector<std::uint8_t> halfCells(kTabled);
+    for (std::size_t k = 0; k < kTabled; ++k)
+        halfCells[k] = std::uint8_t(unitsBelow(double(k), 0.0, 2, 127));
     cellBytes_.resize(cellCount);
     for (std::size_t i = 0; i < cellCount; ++i)
-        cellBytes_[i] = !freeCell[i]    ? 0
-                        : insideCell[i] ? std::uint8_t(128 + unitsBelow(squared[i], 0.0, 2, 127))
-                                        : std::uint8_t(1 + unitsBelow(squared[i], 0.0, 2, 126));
-
-    if (hasMarkers_)
     {
-        std::fill(squared.begin(), squared.end(), kUnreached);
+        const int units = squared[i] < double(kTabled) ? halfCells[std::size_t(squared[i])] : 127;
+        cellBytes_[i] = occupiedCell[i] ? 0
+                        : insideCell[i] ? std::uint8_t(128 + units)
+                                        : std::uint8_t(1 + std::min(units, 126));
+    }
+
+    if (hasMarkers_ && markers.size() <= kMarkersKeptAsPoints)
+        markerPoints_ = markers;  // at() measures to each of them: exact, and no second transform
+    else if (hasMarkers_)
+    {
+        std::vector<std::uint8_t> markerCell(cellCount, 0);
         for (const Vec3 &m : markers)
         {
             int x0, x1, y0, y1, z0, z1;
@@ -241,12 +223,12 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             for (int z = z0; z <= z1; ++z)
                 for (int y = y0; y <= y1; ++y)
                     for (int x = x0; x <= x1; ++x)
-                        squared[cellIndex(x, y, z)] = 0.0;
+                        markerCell[cellIndex(x, y, z)] = 1;
         }
-        distanceTransform3d(squared, nx_, ny_, nz_);
+        const std::vector<double> markerSquared = squaredDistanceTransform(markerCell, nx_, ny_, nz_);
         markerBytes_.resize(cellCount);
         for (std::size_t i = 0; i < cellCount; ++i)
-            markerBytes_[i] = std::uint8_t(unitsBelow(squared[i], 0.5 * kSqrt3, 1, 255));
+            markerBytes_[i] = std::uint8_t(unitsBelow(markerSquared[i], 0.5 * kSqrt3, 1, 255));
     }
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

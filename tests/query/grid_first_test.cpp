@@ -160,7 +160,12 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         ClearanceGridSettings settings;
         settings.maxCells = 1 << 15;
         settings.margin = 0.3 * scale;
-        const ClearanceGrid grid(*mesh, &solids, markers, settings);
+        const ClearanceGrid grid(*mesh, &solids, markers, settings);  // 12 markers: kept per cell
+        // Three markers: kept as points and measured to directly.
+        const std::vector<Vec3> fewMarkers(markers.begin(), markers.begin() + 3);
+        const ClearanceGrid fewMarkerGrid(*mesh, &solids, fewMarkers, settings);
+        ASSERT_GT(markers.size(), 8u);
+        int fewMarkersNear = 0;
         std::uniform_real_distribution<double> u(-1.6, 1.6), far(-4.0, 4.0);
         // A fixed count (cheap even under the sanitizers): the "not vacuous" checks below need it.
         // One point in four may lie beyond the grid (which ends 0.3 past the mesh's box).
@@ -177,6 +182,18 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
             for (const Vec3 &m : markers)
                 markerDistance = std::min(markerDistance, (m - p).norm());
             ASSERT_LE(s.markerClearance, markerDistance);
+            double fewMarkerDistance = std::numeric_limits<double>::infinity();
+            for (const Vec3 &m : fewMarkers)
+                fewMarkerDistance = std::min(fewMarkerDistance, (m - p).norm());
+            const ClearanceSample few = fewMarkerGrid.at(p);
+            ASSERT_LE(few.markerClearance, fewMarkerDistance);
+            // Not vacuous: within rounding of the distance itself.
+            ASSERT_GE(few.markerClearance, fewMarkerDistance - 1e-6 * scale);
+            fewMarkersNear += fewMarkerDistance < 0.5 * scale;
+            // The marker channel is all that differs.
+            ASSERT_EQ(few.clearance, s.clearance);
+            ASSERT_EQ(few.inside, s.inside);
+            ASSERT_EQ(few.outside, s.outside);
             expectClearsAgreesWithAt(grid, p, s, scale);
             ASSERT_FALSE(s.inside && s.outside);
             if (s.inside)
@@ -191,6 +208,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         EXPECT_GT(insideSeen, 10) << "scale " << scale;
         EXPECT_GT(outsideSeen, kPoints / 2) << "scale " << scale;
         EXPECT_GT(positiveSeen, kPoints / 2) << "scale " << scale;
+        EXPECT_GT(fewMarkersNear, 10) << "scale " << scale;
     }
 }
 

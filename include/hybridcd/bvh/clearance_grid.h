@@ -17,7 +17,8 @@ namespace hcd
 {
 struct ClearanceGridSettings
 {
-    /// Upper bound on the number of cells (one byte each, twice with markers).
+    /// Upper bound on the number of cells (one byte each, twice with more than eight markers; at
+    /// most 2^31).
     std::size_t maxCells = std::size_t(1) << 19;
     /// The grid covers the mesh's bounding box grown by this much on every side (world units).
     double margin = 0.0;
@@ -86,7 +87,8 @@ public:
     std::size_t occupiedCells() const { return occupied_; }
     std::size_t memoryBytes() const
     {
-        return cellBytes_.size() + markerBytes_.size() + 12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
+        return cellBytes_.size() + markerBytes_.size() + sizeof(Vec3) * markerPoints_.size() +
+               12 * occupiedMask_.size() + 4 * occupiedTriangle_.size();
     }
     double buildSeconds() const { return buildSeconds_; }
 
@@ -120,9 +122,15 @@ private:
     /// least (code - 1) half cells from the surface; 128..255: inside a solid, (code - 128) half
     /// cells. One byte per cell, so that the codes every proof reads stay in cache.
     std::vector<std::uint8_t> cellBytes_;
-    /// With markers, per cell, a lower bound on the distance to the nearest marker in whole cells
-    /// (the byte's value, saturating at 255); read far less often, so kept apart.
+    /// With at most kMarkersKeptAsPoints markers, the markers themselves: at() measures to each.
+    static constexpr std::size_t kMarkersKeptAsPoints = 8;
+    std::vector<Vec3> markerPoints_;
+    /// With more markers, per cell, a lower bound on the distance to the nearest marker in whole
+    /// cells (the byte's value, saturating at 255); read far less often, so kept apart.
     std::vector<std::uint8_t> markerBytes_;
+    /// Lower bound on the distance from p to the nearest marker (markers kept as points), less
+    /// `slack`.
+    double markerPointClearance(const Vec3 &p, double slack) const;
     /// Kept triangles: bit i % 64 of occupiedMask_[i / 64] marks occupied cell i; occupiedBefore_
     /// counts occupied cells of earlier words, so a cell's rank indexes occupiedTriangle_.
     std::vector<std::uint64_t> occupiedMask_;
@@ -164,7 +172,9 @@ inline ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         const double d = gapToMeshBox(p).norm() * (1.0 - 1e-12) - slack;  // NaN stays "unknown"
         s.clearance = d > 0.0 ? d : 0.0;
         s.outside = d > 0.0;
-        s.markerClearance = hasMarkers_ ? s.clearance : std::numeric_limits<double>::infinity();
+        s.markerClearance = !hasMarkers_             ? std::numeric_limits<double>::infinity()
+                            : !markerPoints_.empty() ? markerPointClearance(p, slack)
+                                                     : s.clearance;
         return s;
     }
     const std::uint8_t code = cellBytes_[cell.index];
@@ -177,9 +187,20 @@ inline ClearanceSample ClearanceGrid::at(const Vec3 &p) const
         s.inside = labelled_ && inside;
         s.outside = labelled_ && !inside;
     }
-    s.markerClearance = hasMarkers_ ? std::max(0.0, markerBytes_[cell.index] * cellSize_ - slack)
-                                    : std::numeric_limits<double>::infinity();
+    s.markerClearance = !hasMarkers_             ? std::numeric_limits<double>::infinity()
+                        : !markerPoints_.empty() ? markerPointClearance(p, slack)
+                                                 : std::max(0.0, markerBytes_[cell.index] * cellSize_ - slack);
     return s;
+}
+
+inline double ClearanceGrid::markerPointClearance(const Vec3 &p, double slack) const
+{
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec3 &m : markerPoints_)
+        nearest = std::min(nearest, (m - p).squaredNorm());
+    // Rounding in the squares and the root is far below 1e-12 of the distance; NaN gives 0.
+    const double d = std::sqrt(nearest) * (1.0 - 1e-12) - slack;
+    return d > 0.0 ? d : 0.0;
 }
 
 inline bool ClearanceGrid::clears(const Vec3 &p, double reach, bool outside) const

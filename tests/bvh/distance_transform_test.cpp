@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The clearance grid's distance transform against brute force (every cell against every seed),
+// bit for bit, on random grids of every shape: flat, one cell thick, long and thin, without seeds,
+// with one seed and with seeds almost everywhere.
+#include "support/test_support.h"
+
+#include "hybridcd/bvh/distance_transform.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace hcd;
+
+namespace
+{
+void expectSameAsBruteForce(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz)
+{
+    const std::vector<double> fast = squaredDistanceTransform(seeds, nx, ny, nz);
+    const std::vector<double> reference = squaredDistanceTransformBruteForce(seeds, nx, ny, nz);
+    ASSERT_EQ(fast.size(), reference.size());
+    for (std::size_t i = 0; i < fast.size(); ++i)
+        ASSERT_EQ(fast[i], reference[i]) << "cell " << i << " of " << nx << "x" << ny << "x" << nz;
+}
+}  // namespace
+
+TEST(DistanceTransform, SameAsBruteForceOnRandomGrids)
+{
+    test::TestRandom rng(test::seeded(29));
+    std::uniform_int_distribution<int> side(1, 14);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int trial = 0; trial < test::cases(400); ++trial)
+    {
+        const int nx = side(rng), ny = side(rng), nz = side(rng);
+        const std::size_t count = std::size_t(nx) * ny * nz;
+        // From no seed at all to nearly every cell a seed.
+        const double density = trial % 5 == 0 ? 0.0 : std::pow(u(rng), 3.0);
+        std::vector<std::uint8_t> seeds(count);
+        for (auto &s : seeds)
+            s = u(rng) < density;
+        expectSameAsBruteForce(seeds, nx, ny, nz);
+    }
+}
+
+TEST(DistanceTransform, OneSeedInLongFlatAndThinGrids)
+{
+    test::TestRandom rng(test::seeded(31));
+    for (const auto &shape : std::vector<std::array<int, 3>>{{1, 1, 1}, {200, 1, 1}, {1, 200, 1}, {1, 1, 200},
+                                                               {60, 50, 1}, {1, 40, 45}, {37, 1, 41}, {23, 29, 31}})
+    {
+        const std::size_t count = std::size_t(shape[0]) * shape[1] * shape[2];
+        std::vector<std::uint8_t> seeds(count, 0);
+        seeds[std::uniform_int_distribution<std::size_t>(0, count - 1)(rng)] = 1;
+        expectSameAsBruteForce(seeds, shape[0], shape[1], shape[2]);
+        seeds.assign(count, 0);
+        seeds[0] = seeds[count - 1] = 1;  // opposite corners
+        expectSameAsBruteForce(seeds, shape[0], shape[1], shape[2]);
+    }
+}
+
+TEST(DistanceTransform, NoSeedLeavesEveryCellUnreached)
+{
+    const std::vector<double> d = squaredDistanceTransform(std::vector<std::uint8_t>(6 * 5 * 4, 0), 6, 5, 4);
+    for (double v : d)
+        EXPECT_EQ(v, kNoSeedSquaredDistance);
+}
