@@ -47,6 +47,83 @@ struct ScratchState
     ompl::base::State *state;
 };
 constexpr unsigned kStartGroup = 1;
+
+// Near-pair fronts: once an interval's swept query fails, every triangle pair that may come within
+// its slack is listed (at most kFrontLimit of them, or none); its sub-intervals then test only those
+// pairs, since every other pair is proved apart over the whole interval. Measured with
+// bench/motion_comparison.cpp (bench/README.md, section 3).
+constexpr std::size_t kFrontLimit = 64;
+// Listing costs a whole traversal without the early exit: only intervals at least this many
+// splits below a starting interval list their pairs, where the near contact has shown itself
+// persistent (listing from the first failure made Maze's and alpha-1.5's means 20-50% worse).
+constexpr int kFrontDepth = 2;
+
+// A part [a, b] of the motion (fractions) still to certify.
+struct MotionInterval
+{
+    double a, b;
+    int front = -1;  ///< the near pairs this interval tests (IntervalChecks::fronts), -1: all
+    int depth = 0;   ///< splits below the starting interval
+};
+
+// The swept test of one interval at its middle state, with the near-pair fronts of one motion.
+class IntervalChecks
+{
+public:
+    struct Outcome
+    {
+        bool certified = false;  ///< nothing comes near on the interval
+        bool colliding = false;  ///< the middle state collides
+        int childFront = -1;     ///< the front its halves (or a bracket inside it) test
+    };
+
+    IntervalChecks(const StateValidityChecker &validity, double robotRadius, QueryContext &context)
+        : validity_(validity),
+          robotRadius_(robotRadius),
+          context_(context)
+    {
+    }
+
+    /// `middleKnownFree`: the middle state was already checked (no collision test needed).
+    Outcome check(const MotionInterval &iv, const RigidTransform &middle, double translationSlack, double radialSlack,
+                  bool middleKnownFree)
+    {
+        Outcome out;
+        if (iv.front >= 0)
+        {
+            // Only these pairs can come near on this interval; a pair that touches is a collision.
+            out.colliding = validity_.poseSweptNearPairsAmong(middle, translationSlack, radialSlack,
+                                                              fronts_[std::size_t(iv.front)], near_, context_);
+            out.certified = near_.empty();
+            if (!out.certified)
+                out.childFront = addFront();
+            return out;
+        }
+        if (!validity_.poseWithinSweptDistance(middle, translationSlack, radialSlack, robotRadius_, context_))
+        {
+            out.certified = true;
+            return out;
+        }
+        out.colliding = !middleKnownFree && validity_.poseCollides(middle, context_);
+        if (iv.depth >= kFrontDepth &&
+            validity_.poseListSweptNearPairs(middle, translationSlack, radialSlack, kFrontLimit, near_, context_))
+            out.childFront = addFront();
+        return out;
+    }
+
+private:
+    int addFront()
+    {
+        fronts_.push_back(near_);
+        return int(fronts_.size()) - 1;
+    }
+
+    const StateValidityChecker &validity_;
+    double robotRadius_;
+    QueryContext &context_;
+    std::vector<std::vector<TrianglePair>> fronts_;
+    std::vector<TrianglePair> near_;
+};
 // Bisection needs about log2(1 / tolerance) levels to close a bracket, the exact first contact of a
 // translation a fixed amount of LP work: on OMPL.app's problems the LP is 1.3-2x faster at a bracket
 // of 1e-6 (check-motion's and the API's default) and up to 2x slower at the planning set-up's 1e-3
@@ -225,14 +302,11 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
 
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
     // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
-    struct Interval
-    {
-        double a, b;
-    };
+    IntervalChecks checks(*validity_, robotRadius_, *context);
     // Start from OMPL's segments rather than [0, 1]: short intervals need small clearances, which
     // the proximity query settles quickly. The earliest segment is processed first, so that
     // [0, certified] is a proven-free prefix.
-    std::vector<Interval> pending;
+    std::vector<MotionInterval> pending;
     const unsigned segments = std::max(1u, unsigned(std::ceil(end * n - 1e-9)));
     for (unsigned i = 1; i <= segments; ++i)
     {
@@ -247,7 +321,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     const double tolerance = toleranceIsSegment_ ? std::max(contactTolerance_, 1.0 / n) : contactTolerance_;
     while (!pending.empty() && !(contactAt <= 1.0 && contactAt - certified <= tolerance))
     {
-        const Interval iv = pending.back();
+        const MotionInterval iv = pending.back();
         pending.pop_back();
         const double mid = 0.5 * (iv.a + iv.b);
         const double half = 0.5 * (iv.b - iv.a);
@@ -258,18 +332,21 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
             refused = true;  // or, with a contact known, the bracket is left wider than the tolerance
             break;
         }
-        if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_, *context))
+        const IntervalChecks::Outcome outcome =
+            checks.check(iv, pose, translationRate * half, angleRate * half, /*middleKnownFree=*/false);
+        if (outcome.certified)
         {
             certified = iv.b;  // intervals are taken in order: the free prefix grows
             continue;
         }
-        if (validity_->poseCollides(pose, *context))
+        if (outcome.colliding)
         {
             contactAt = mid;
             if (contactAt - certified <= tolerance)
                 break;
+            // The interval's front covers [certified, contactAt] (intervals are taken in order).
             pending.clear();
-            pending.push_back({certified, contactAt});
+            pending.push_back({certified, contactAt, outcome.childFront});
             continue;
         }
         // Neither certified nor colliding: some robot point is within its reach of the environment.
@@ -291,8 +368,8 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
             refused = true;  // at the resolution of doubles: nothing left to split
             break;
         }
-        pending.push_back({mid, iv.b});
-        pending.push_back({iv.a, mid});
+        pending.push_back({mid, iv.b, outcome.childFront, iv.depth + 1});
+        pending.push_back({iv.a, mid, outcome.childFront, iv.depth + 1});
     }
     report.lastFree = certified;
     if (contactAt <= 1.0)
@@ -373,34 +450,32 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     // Certification of the dyadic intervals between the raked states (or of groups of them), by
     // bisection with the swept-proximity query. A middle state that is a raked state is known to
     // be collision-free; any other is checked for collision before splitting.
-    struct Interval
-    {
-        double a, b;
-    };
-    std::vector<Interval> pending;
+    IntervalChecks checks(*validity_, robotRadius_, *context);
+    std::vector<MotionInterval> pending;
     const std::uint64_t starts = std::max<std::uint64_t>(1, m / kStartGroup);
     for (std::uint64_t k = 1; k <= starts; ++k)
         pending.push_back({double(k - 1) / double(starts), double(k) / double(starts)});
     std::size_t queries = 0;
     while (!pending.empty())
     {
-        const Interval iv = pending.back();
+        const MotionInterval iv = pending.back();
         pending.pop_back();
         const double mid = 0.5 * (iv.a + iv.b);
         const double half = 0.5 * (iv.b - iv.a);
         if (++queries > kMaxQueries)
             return report;  // refused
-        const RigidTransform pose = poseAt(mid);
-        if (!validity_->poseWithinSweptDistance(pose, translationRate * half, angleRate * half, robotRadius_, *context))
-            continue;
         const double onGrid = mid * double(m);
-        if (onGrid != std::floor(onGrid) && validity_->poseCollides(pose, *context))
+        const IntervalChecks::Outcome outcome =
+            checks.check(iv, poseAt(mid), translationRate * half, angleRate * half, onGrid == std::floor(onGrid));
+        if (outcome.certified)
+            continue;
+        if (outcome.colliding)
             return contact(mid);
         // A near contact is never accepted; nor is an interval doubles cannot split.
         if (speed * half < minimumClearance_ || !(iv.a < mid && mid < iv.b))
             return report;
-        pending.push_back({mid, iv.b});
-        pending.push_back({iv.a, mid});
+        pending.push_back({mid, iv.b, outcome.childFront, iv.depth + 1});
+        pending.push_back({iv.a, mid, outcome.childFront, iv.depth + 1});
     }
     report.free = true;
     return report;

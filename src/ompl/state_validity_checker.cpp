@@ -100,6 +100,24 @@ bool StateValidityChecker::poseWithinSweptDistance(const RigidTransform &worldFr
     });
 }
 
+bool StateValidityChecker::poseListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack,
+                                                  double radialSlack, std::size_t limit,
+                                                  std::vector<TrianglePair> &near, QueryContext &context) const
+{
+    return timed([&] {
+        return checker_->listSweptNearPairs(worldFromRobot, translationSlack, radialSlack, limit, near, context);
+    });
+}
+
+bool StateValidityChecker::poseSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack,
+                                                   double radialSlack, const std::vector<TrianglePair> &pairs,
+                                                   std::vector<TrianglePair> &near, QueryContext &context) const
+{
+    return timed([&] {
+        return checker_->sweptNearPairsAmong(worldFromRobot, translationSlack, radialSlack, pairs, near, context);
+    });
+}
+
 bool StateValidityChecker::poseWithinDistance(const RigidTransform &worldFromRobot, double delta,
                                               QueryContext &context) const
 {

@@ -166,8 +166,52 @@ bool VolumeTreeChecker<Volume>::doWithinSweptDistance(const RigidTransform &worl
 }
 
 template <class Volume>
+bool VolumeTreeChecker<Volume>::doListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack,
+                                                     double radialSlack, std::size_t limit,
+                                                     std::vector<TrianglePair> &near, QueryContext &context) const
+{
+    // Pieces and approximate leaves decide pairs without their triangles: not listed.
+    if (pieceStage_ || leafTolerance_)
+        return false;
+    return !anyPairWithin(worldFromRobot, {std::max(0.0, translationSlack), std::max(0.0, radialSlack)}, context,
+                          nullptr, limit, &near);
+}
+
+template <class Volume>
+bool VolumeTreeChecker<Volume>::doSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack,
+                                                      double radialSlack, const std::vector<TrianglePair> &pairs,
+                                                      std::vector<TrianglePair> &near, QueryContext &context) const
+{
+    // The leaf test of anyPairWithin, pair by pair; a pair near enough is also tested for contact.
+    const Slack slack{std::max(0.0, translationSlack), std::max(0.0, radialSlack)};
+    const double tolerance = toleranceFor(worldFromRobot);
+    const TriangleMesh &env = *scene_.environment;
+    PlacedRobot<Volume> placed(robotTree_, worldFromRobot, context);
+    bool touching = false;
+    std::uint64_t triangleTests = 0;
+    for (const TrianglePair &p : pairs)
+    {
+        const PlacedTriangle &a = placed.triangle(p.robot);
+        const double delta = slack.at(robotTriangleReach_[p.robot]) * (1.0 + 1e-9) + tolerance;
+        const TriangleBounds &eb = environmentTriangleBounds_[p.environment];
+        if ((a.min.array() > eb.max.array() + delta).any() || (eb.min.array() > a.max.array() + delta).any())
+            continue;
+        ++triangleTests;
+        const Vec3 &b0 = env.corner(p.environment, 0), &b1 = env.corner(p.environment, 1),
+                   &b2 = env.corner(p.environment, 2);
+        if (!trianglesWithinDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2, delta))
+            continue;
+        near.push_back(p);
+        touching = touching || trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2);
+    }
+    context.stats.primitiveTests += triangleTests;
+    return touching;
+}
+
+template <class Volume>
 bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryContext &context,
-                                              std::vector<ContactPair> *found, std::size_t limit) const
+                                              std::vector<ContactPair> *found, std::size_t limit,
+                                              std::vector<TrianglePair> *near) const
 {
     if (!worldFromRobot.isFinite())
         return true;
@@ -209,7 +253,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
 
     // The last deciding pair first (not when listing contacts). Checked against this checker's
     // meshes, since a context may outlive a checker whose address is reused.
-    WitnessPair *witness = found ? nullptr : &context.scratch<WitnessCache>().of(this, proximity);
+    WitnessPair *witness = found || near ? nullptr : &context.scratch<WitnessCache>().of(this, proximity);
     if (witness && witness->valid && witness->robot < scene_.robot->triangleCount() &&
         witness->environment < env.triangleCount() && trianglesWithin(witness->robot, witness->environment))
     {
@@ -280,6 +324,13 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                     const std::uint32_t et = environmentTree_.triangleOrder()[en.firstTriangle + j];
                     if (!trianglesWithin(rt, et))
                         continue;
+                    if (near)
+                    {
+                        near->push_back({rt, et});
+                        if ((hit = near->size() > limit))
+                            break;
+                        continue;
+                    }
                     if (!found)
                     {
                         hit = true;

@@ -45,8 +45,8 @@ TEST(DistanceTransform, SameAsBruteForceOnRandomGrids)
 TEST(DistanceTransform, OneSeedInLongFlatAndThinGrids)
 {
     test::TestRandom rng(test::seeded(31));
-    for (const auto &shape : std::vector<std::array<int, 3>>{{1, 1, 1}, {200, 1, 1}, {1, 200, 1}, {1, 1, 200},
-                                                               {60, 50, 1}, {1, 40, 45}, {37, 1, 41}, {23, 29, 31}})
+    for (const auto &shape : std::vector<std::array<int, 3>>{
+             {1, 1, 1}, {200, 1, 1}, {1, 200, 1}, {1, 1, 200}, {60, 50, 1}, {1, 40, 45}, {37, 1, 41}, {23, 29, 31}})
     {
         const std::size_t count = std::size_t(shape[0]) * shape[1] * shape[2];
         std::vector<std::uint8_t> seeds(count, 0);

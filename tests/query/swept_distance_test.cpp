@@ -7,6 +7,7 @@
 #include "support/test_support.h"
 
 #include "hybridcd/geometry/triangle_distance.h"
+#include "hybridcd/geometry/triangle_intersection.h"
 #include "hybridcd/query/checker_catalogue.h"
 
 #include <gtest/gtest.h>
@@ -132,4 +133,124 @@ TEST(SweptDistance, CertifiedMotionIntervalsAreFreeUnderDenseSampling)
         EXPECT_GT(certified, 15u) << name;
         EXPECT_GT(refused, 15u) << name;
     }
+}
+
+TEST(SweptDistance, NearPairListsHoldEveryPairWithinItsReach)
+{
+    // window_3d has no repeated faces, so the checkers' own triangle indices are the meshes'.
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
+    const TriangleMesh &robot = *problem.robot.mesh, &environment = *problem.world.mesh;
+    ASSERT_EQ(withoutRepeatedFaces(problem.robot.mesh).dropped, 0u);
+    ASSERT_EQ(withoutRepeatedFaces(problem.world.mesh).dropped, 0u);
+    std::vector<double> reach(robot.triangleCount());
+    for (std::uint32_t t = 0; t < robot.triangleCount(); ++t)
+        reach[t] = std::max({robot.corner(t, 0).norm(), robot.corner(t, 1).norm(), robot.corner(t, 2).norm()});
+    test::TestRandom rng(test::seeded(34));
+    const auto poses = test::randomPoses(problem, test::cases(160), rng);
+    std::uniform_real_distribution<double> slack(0.0, 2.0), radial(0.0, 0.05), unit(0.0, 1.0);
+    for (const std::string &name : {"auto", "obb", "aabb", "kdop18", "ellipsoid", "hybrid"})
+    {
+        const auto checker = makeChecker(name, problem.scene);
+        QueryContext context;
+        std::size_t listed = 0, pairsSeen = 0, narrowed = 0;
+        for (const RigidTransform &pose : poses)
+        {
+            const double t = slack(rng) + 1e-3, r = radial(rng);
+            std::vector<TrianglePair> near;
+            if (!checker->listSweptNearPairs(pose, t, r, 1u << 20, near, context))
+                continue;
+            ++listed;
+            pairsSeen += near.size();
+            const auto isListed = [&](std::uint32_t i, std::uint32_t j) {
+                return std::any_of(near.begin(), near.end(),
+                                   [&](const TrianglePair &p) { return p.robot == i && p.environment == j; });
+            };
+            // Brute force: every pair within its reach (with room for rounding) is listed.
+            for (std::uint32_t i = 0; i < robot.triangleCount(); ++i)
+            {
+                const Vec3 a0 = pose.apply(robot.corner(i, 0)), a1 = pose.apply(robot.corner(i, 1)),
+                           a2 = pose.apply(robot.corner(i, 2));
+                for (std::uint32_t j = 0; j < environment.triangleCount(); ++j)
+                    if (triangleDistance(a0, a1, a2, environment.corner(j, 0), environment.corner(j, 1),
+                                         environment.corner(j, 2)) <= 0.999 * (t + r * reach[i]))
+                        ASSERT_TRUE(isListed(i, j))
+                            << name << ": pair " << i << ", " << j << " within reach, not listed";
+            }
+            // Among the listed pairs, at a smaller slack: the same brute force, and contact exactly
+            // when a listed pair intersects.
+            const double t2 = t * unit(rng), r2 = r * unit(rng);
+            std::vector<TrianglePair> nearer;
+            const bool touching = checker->sweptNearPairsAmong(pose, t2, r2, near, nearer, context);
+            narrowed += nearer.size() < near.size();
+            bool intersecting = false;
+            for (const TrianglePair &p : near)
+            {
+                const Vec3 a0 = pose.apply(robot.corner(p.robot, 0)), a1 = pose.apply(robot.corner(p.robot, 1)),
+                           a2 = pose.apply(robot.corner(p.robot, 2));
+                const Vec3 &b0 = environment.corner(p.environment, 0), &b1 = environment.corner(p.environment, 1),
+                           &b2 = environment.corner(p.environment, 2);
+                intersecting = intersecting || trianglesIntersect(a0, a1, a2, b0, b1, b2);
+                if (triangleDistance(a0, a1, a2, b0, b1, b2) <= 0.999 * (t2 + r2 * reach[p.robot]))
+                    ASSERT_TRUE(std::any_of(nearer.begin(), nearer.end(), [&](const TrianglePair &q) {
+                        return q.robot == p.robot && q.environment == p.environment;
+                    })) << name;
+            }
+            ASSERT_EQ(touching, intersecting) << name;
+        }
+        // Not vacuous: tree checkers list, and lists get narrower at smaller slacks.
+        EXPECT_GT(listed, poses.size() / 2) << name;
+        EXPECT_GT(pairsSeen, listed) << name;
+        EXPECT_GT(narrowed, listed / 4) << name;
+    }
+    // A checker that cannot list says so.
+    std::vector<TrianglePair> near;
+    QueryContext context;
+    EXPECT_FALSE(
+        makeChecker("bruteforce", problem.scene)->listSweptNearPairs(poses.front(), 1.0, 0.0, 1u << 20, near, context));
+}
+
+TEST(SweptDistance, IntervalsCertifiedByTheirNearPairsAreFreeUnderDenseSampling)
+{
+    // A front listed on an interval, then tested alone on a part of it, as the motion validator does.
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
+    test::TestRandom rng(test::seeded(35));
+    const auto starts = test::randomPoses(problem, test::cases(400), rng);
+    std::uniform_real_distribution<double> step(-4.0, 4.0), unit(0.0, 1.0);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    const auto checker = makeChecker("auto", problem.scene);
+    QueryContext context;
+    std::size_t certifiedByPairs = 0, touchingSeen = 0;
+    for (const RigidTransform &a : starts)
+    {
+        const RigidTransform turn =
+            RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(step(rng), step(rng), step(rng)), 0.8 * unit(rng));
+        const RigidTransform b{turn.rotation * a.rotation, a.translation + Vec3(step(rng), step(rng), step(rng))};
+        const double translationRate = (b.translation - a.translation).norm() * (1.0 + 1e-9);
+        const double angleRate = rotationAngle(a.rotation, b.rotation) * (1.0 + 1e-9) + 1e-15;
+        // An interval [lo, hi] whose front is listed, and a part [lo2, hi2] of it.
+        const double lo = 0.5 * unit(rng), hi = lo + 0.5 * unit(rng), half = 0.5 * (hi - lo);
+        std::vector<TrianglePair> front, near;
+        if (!checker->listSweptNearPairs(interpolate(a, b, lo + half), translationRate * half, angleRate * half, 4096,
+                                         front, context))
+            continue;
+        const double lo2 = lo + (hi - lo) * 0.5 * unit(rng), hi2 = lo2 + (hi - lo2) * unit(rng);
+        const double half2 = 0.5 * (hi2 - lo2);
+        const RigidTransform middle = interpolate(a, b, lo2 + half2);
+        if (checker->sweptNearPairsAmong(middle, translationRate * half2, angleRate * half2, front, near, context))
+        {
+            ++touchingSeen;
+            ASSERT_TRUE(reference->collides(middle)) << "a touching pair at a free state";
+            continue;
+        }
+        // Surfaces apart over [lo2, hi2]: free throughout when free at its start (no containment
+        // begins without the surfaces meeting).
+        if (!near.empty() || reference->collides(interpolate(a, b, lo2)))
+            continue;
+        ++certifiedByPairs;
+        for (int k = 0; k <= 200; ++k)
+            ASSERT_FALSE(reference->collides(interpolate(a, b, lo2 + (hi2 - lo2) * k / 200)))
+                << "an interval certified by its near pairs collides at sample " << k;
+    }
+    EXPECT_GT(certifiedByPairs, 10u);
+    EXPECT_GT(touchingSeen, 0u);
 }

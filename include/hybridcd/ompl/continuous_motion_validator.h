@@ -10,7 +10,10 @@
 // checks that per node, with each node's distance from the robot origin. The validator
 // certifies [0, 1] by bisection with that proximity query (an early-exit query, about as cheap as a
 // collision check when clearances are large), splitting only the intervals it cannot certify, in
-// order from tau = 0 so the first contact found is the earliest. When a last valid state is asked
+// order from tau = 0 so the first contact found is the earliest. An interval still uncertified two
+// splits below its starting interval lists the robot-environment triangle pairs that may come within
+// its reach (CollisionChecker::listSweptNearPairs, at most 64); its parts then test only those pairs,
+// every other pair being proved apart over the whole interval. When a last valid state is asked
 // for, the search then narrows to the bracket [last certified, contact] until it is shorter than
 // the contact tolerance. A motion is rejected when a middle state collides (contact found) or when
 // an interval shrinks below a clearance too small to certify (1e-7 of the scene size, a near

@@ -53,6 +53,12 @@ public:
     bool poseWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const;
     bool poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                  double robotRadius, QueryContext &context) const;
+    /// CollisionChecker::listSweptNearPairs and sweptNearPairsAmong, counted and timed.
+    bool poseListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                                std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const;
+    bool poseSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                                 const std::vector<TrianglePair> &pairs, std::vector<TrianglePair> &near,
+                                 QueryContext &context) const;
 
     /// The contexts this checker's own queries borrow (OMPL calls it from any thread); callers
     /// that make many queries in a row, such as a motion validator, borrow one for all of them.

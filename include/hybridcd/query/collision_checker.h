@@ -31,6 +31,14 @@ struct ContactPair
     Vec3 witness = Vec3::Zero();  ///< a world point in both parts
 };
 
+/// A robot triangle and an environment triangle by a checker's own indices: what its swept
+/// proximity lists (listSweptNearPairs) and takes back (sweptNearPairsAmong).
+struct TrianglePair
+{
+    std::uint32_t robot = 0;
+    std::uint32_t environment = 0;
+};
+
 /// One line of `inspect` output about a checker's data structures.
 struct HierarchyReport
 {
@@ -120,6 +128,31 @@ public:
     bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                              double robotRadius, QueryStats *stats = nullptr) const;
 
+    /// Swept proximity that says what is near: when it returns true, `near` holds every pair of
+    /// robot and environment triangles that may come within the swept slack at this pose (as
+    /// withinSweptDistance measures it), and every other pair is proved farther apart; so proving
+    /// the listed pairs apart over a part of a motion interval proves the robot's surface apart from
+    /// the environment's there. Returns false, `near` then meaning nothing, when the checker cannot
+    /// list pairs (the default), when more than `limit` pairs are near, or when one object is inside
+    /// a solid of the other at this pose. Slacks must not both be 0.
+    bool listSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                            std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const
+    {
+        near.clear();
+        if (!(translationSlack > 0.0 || radialSlack > 0.0) || !worldFromRobot.isFinite())
+            return false;
+        return doListSweptNearPairs(worldFromRobot, translationSlack, radialSlack, limit, near, context);
+    }
+    /// The pairs of `pairs` (from listSweptNearPairs on this checker) that may come within the swept
+    /// slack at this pose go into `near`; returns true when one of them intersects at this pose (the
+    /// robot collides there). Without list support every pair stays near.
+    bool sweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                             const std::vector<TrianglePair> &pairs, std::vector<TrianglePair> &near,
+                             QueryContext &context) const
+    {
+        near.clear();
+        return doSweptNearPairsAmong(worldFromRobot, translationSlack, radialSlack, pairs, near, context);
+    }
     /// Hierarchies built for this checker (empty for brute force). `withVolumeRatios` also measures
     /// the node/content volume ratios (costly: a convex hull per sampled node).
     virtual std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const
@@ -159,6 +192,20 @@ private:
     virtual bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const
     {
         return doDistance(worldFromRobot, context) <= delta;
+    }
+    virtual bool doListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                                      std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const
+    {
+        (void)worldFromRobot, (void)translationSlack, (void)radialSlack, (void)limit, (void)near, (void)context;
+        return false;
+    }
+    virtual bool doSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack,
+                                       double radialSlack, const std::vector<TrianglePair> &pairs,
+                                       std::vector<TrianglePair> &near, QueryContext &context) const
+    {
+        (void)worldFromRobot, (void)translationSlack, (void)radialSlack, (void)context;
+        near = pairs;
+        return false;
     }
     /// The default uses the robot's radius for every point; hierarchical checkers use each part's
     /// own reach.

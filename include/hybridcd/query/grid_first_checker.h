@@ -88,6 +88,18 @@ private:
     {
         return exact_->contacts(worldFromRobot, limit, context);
     }
+    /// Pairs are the exact checker's: the grid proves whole robot parts, not pairs.
+    bool doListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                              std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const override
+    {
+        return exact_->listSweptNearPairs(worldFromRobot, translationSlack, radialSlack, limit, near, context);
+    }
+    bool doSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                               const std::vector<TrianglePair> &pairs, std::vector<TrianglePair> &near,
+                               QueryContext &context) const override
+    {
+        return exact_->sweptNearPairsAmong(worldFromRobot, translationSlack, radialSlack, pairs, near, context);
+    }
 
     std::unique_ptr<CollisionChecker> exact_;
     bool solid_ = true;

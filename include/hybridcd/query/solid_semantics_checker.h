@@ -60,6 +60,20 @@ private:
         return surface_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, context) ||
                contained(worldFromRobot);
     }
+    /// The surfaces' pairs; none while one object is inside the other (that pose collides).
+    bool doListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                              std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const override
+    {
+        return !contained(worldFromRobot) &&
+               surface_->listSweptNearPairs(worldFromRobot, translationSlack, radialSlack, limit, near, context);
+    }
+    /// Surfaces only: along a motion whose surfaces stay apart, neither object enters the other.
+    bool doSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                               const std::vector<TrianglePair> &pairs, std::vector<TrianglePair> &near,
+                               QueryContext &context) const override
+    {
+        return surface_->sweptNearPairsAmong(worldFromRobot, translationSlack, radialSlack, pairs, near, context);
+    }
     /// The surface contacts, or else a containment record (witness: the contained vertex).
     std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
                                         QueryContext &context) const override;

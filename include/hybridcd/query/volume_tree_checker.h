@@ -66,6 +66,12 @@ private:
                                double robotRadius, QueryContext &context) const override;
     std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
                                         QueryContext &context) const override;
+    /// The swept proximity's traversal without its early exit (plain triangle leaves only).
+    bool doListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                              std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const override;
+    bool doSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
+                               const std::vector<TrianglePair> &pairs, std::vector<TrianglePair> &near,
+                               QueryContext &context) const override;
 
     /// How far a robot part at distance r from the robot origin may be from where the pose puts it.
     struct Slack
@@ -76,9 +82,11 @@ private:
     };
 
     /// Collision (zero slack, exact triangle test) or proximity (distance at most the slack) with
-    /// an early exit; with `found`, every contact is recorded (up to `limit`) instead.
+    /// an early exit; with `found`, every contact is recorded (up to `limit`) instead; with `near`,
+    /// every triangle pair within the slack, returning true once more than `limit` are.
     bool anyPairWithin(const RigidTransform &worldFromRobot, Slack slack, QueryContext &context,
-                       std::vector<ContactPair> *found = nullptr, std::size_t limit = 0) const;
+                       std::vector<ContactPair> *found = nullptr, std::size_t limit = 0,
+                       std::vector<TrianglePair> *near = nullptr) const;
     double toleranceFor(const RigidTransform &worldFromRobot) const;
 
     struct TriangleBounds
