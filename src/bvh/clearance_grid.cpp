@@ -2,6 +2,7 @@
 #include "hybridcd/bvh/clearance_grid.h"
 
 #include "hybridcd/bvh/distance_transform.h"
+#include "hybridcd/bvh/grid_regions.h"
 #include "hybridcd/geometry/triangle_distance.h"
 
 #include <algorithm>
@@ -15,50 +16,6 @@ namespace
 {
 constexpr double kUnreached = kNoSeedSquaredDistance;  // squared distance of a cell no seed reaches
 constexpr double kSqrt3 = 1.7320508075688772;
-
-/// For each free cell (occupied[i] == 0) of an nx * ny * nz grid (x fastest), the first cell in
-/// index order of its face-connected region of free cells; occupied cells keep their own index.
-std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied, int nx, int ny, int nz)
-{
-    const std::size_t plane = std::size_t(nx) * ny;
-    std::vector<std::uint32_t> parent(plane * nz);
-    // Every parent precedes its child (parent[i] <= i): a root found is the region's smallest index.
-    const auto find = [&](std::uint32_t i) {
-        while (parent[i] != i)
-        {
-            parent[i] = parent[parent[i]];  // path halving
-            i = parent[i];
-        }
-        return i;
-    };
-    const auto unite = [&](std::uint32_t a, std::uint32_t b) {
-        a = find(a);
-        b = find(b);
-        if (a < b)
-            parent[b] = a;
-        else if (b < a)
-            parent[a] = b;
-    };
-    std::uint32_t i = 0;
-    for (int z = 0; z < nz; ++z)
-        for (int y = 0; y < ny; ++y)
-            for (int x = 0; x < nx; ++x, ++i)
-            {
-                parent[i] = i;
-                if (occupied[i])
-                    continue;
-                if (x > 0 && !occupied[i - 1])
-                    parent[i] = parent[i - 1];  // already at most the left neighbour's root's depth
-                if (y > 0 && !occupied[i - nx])
-                    unite(i - std::uint32_t(nx), i);
-                if (z > 0 && !occupied[i - plane])
-                    unite(i - std::uint32_t(plane), i);
-            }
-    // In index order every parent is final before its children: one pass flattens every chain.
-    for (std::uint32_t j = 0; j < parent.size(); ++j)
-        parent[j] = parent[parent[j]];
-    return parent;
-}
 
 /// The distance from a point of a cell to any point of a seed cell whose centres are
 /// sqrt(squared) cells apart, in whole units of 1 / unitsPerCell cells, rounded down: the query

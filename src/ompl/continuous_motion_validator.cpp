@@ -4,6 +4,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -62,9 +63,13 @@ constexpr int kFrontDepth = 2;
 struct MotionInterval
 {
     double a, b;
-    int front = -1;  ///< the near pairs this interval tests (IntervalChecks::fronts), -1: all
+    int front = -1;  ///< the near pairs this interval tests (a front of IntervalChecks), -1: all
     int depth = 0;   ///< splits below the starting interval
 };
+
+// Pairs kept in the fronts of one motion at most: beyond, intervals query the whole scene again
+// (a bound on memory, 128 KiB, whatever the number of intervals).
+constexpr std::size_t kMaxFrontPairs = std::size_t(1) << 14;
 
 // The swept test of one interval at its middle state, with the near-pair fronts of one motion.
 class IntervalChecks
@@ -77,10 +82,14 @@ public:
         int childFront = -1;     ///< the front its halves (or a bracket inside it) test
     };
 
-    IntervalChecks(const StateValidityChecker &validity, double robotRadius, QueryContext &context)
+    /// `listedFronts` counts the fronts listed; `useFronts` false queries the whole scene always.
+    IntervalChecks(const StateValidityChecker &validity, double robotRadius, QueryContext &context, bool useFronts,
+                   std::atomic<std::uint64_t> &listedFronts)
         : validity_(validity),
           robotRadius_(robotRadius),
-          context_(context)
+          context_(context),
+          useFronts_(useFronts),
+          listedFronts_(listedFronts)
     {
     }
 
@@ -92,11 +101,13 @@ public:
         if (iv.front >= 0)
         {
             // Only these pairs can come near on this interval; a pair that touches is a collision.
-            out.colliding = validity_.poseSweptNearPairsAmong(middle, translationSlack, radialSlack,
-                                                              fronts_[std::size_t(iv.front)], near_, context_);
+            const std::vector<TrianglePair> &front = fronts_[std::size_t(iv.front)];
+            out.colliding =
+                validity_.poseSweptNearPairsAmong(middle, translationSlack, radialSlack, front, near_, context_);
             out.certified = near_.empty();
+            // The filter keeps the pairs' order: a front of the same size is the same front.
             if (!out.certified)
-                out.childFront = addFront();
+                out.childFront = near_.size() == front.size() ? iv.front : addFront();
             return out;
         }
         if (!validity_.poseWithinSweptDistance(middle, translationSlack, radialSlack, robotRadius_, context_))
@@ -105,15 +116,22 @@ public:
             return out;
         }
         out.colliding = !middleKnownFree && validity_.poseCollides(middle, context_);
-        if (iv.depth >= kFrontDepth &&
+        // A colliding middle ends the verdict and narrows the bracket: no front for it.
+        if (useFronts_ && !out.colliding && iv.depth >= kFrontDepth && keptPairs_ + kFrontLimit <= kMaxFrontPairs &&
             validity_.poseListSweptNearPairs(middle, translationSlack, radialSlack, kFrontLimit, near_, context_))
+        {
+            listedFronts_.fetch_add(1, std::memory_order_relaxed);
             out.childFront = addFront();
+        }
         return out;
     }
 
 private:
     int addFront()
     {
+        if (keptPairs_ + near_.size() > kMaxFrontPairs)
+            return -1;
+        keptPairs_ += near_.size();
         fronts_.push_back(near_);
         return int(fronts_.size()) - 1;
     }
@@ -121,7 +139,10 @@ private:
     const StateValidityChecker &validity_;
     double robotRadius_;
     QueryContext &context_;
+    bool useFronts_;
+    std::atomic<std::uint64_t> &listedFronts_;
     std::vector<std::vector<TrianglePair>> fronts_;
+    std::size_t keptPairs_ = 0;
     std::vector<TrianglePair> near_;
 };
 // Bisection needs about log2(1 / tolerance) levels to close a bracket, the exact first contact of a
@@ -302,7 +323,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
 
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
     // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
-    IntervalChecks checks(*validity_, robotRadius_, *context);
+    IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_);
     // Start from OMPL's segments rather than [0, 1]: short intervals need small clearances, which
     // the proximity query settles quickly. The earliest segment is processed first, so that
     // [0, certified] is a proven-free prefix.
@@ -450,7 +471,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     // Certification of the dyadic intervals between the raked states (or of groups of them), by
     // bisection with the swept-proximity query. A middle state that is a raked state is known to
     // be collision-free; any other is checked for collision before splitting.
-    IntervalChecks checks(*validity_, robotRadius_, *context);
+    IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_);
     std::vector<MotionInterval> pending;
     const std::uint64_t starts = std::max<std::uint64_t>(1, m / kStartGroup);
     for (std::uint64_t k = 1; k <= starts; ++k)

@@ -170,7 +170,8 @@ bool VolumeTreeChecker<Volume>::doListSweptNearPairs(const RigidTransform &world
                                                      double radialSlack, std::size_t limit,
                                                      std::vector<TrianglePair> &near, QueryContext &context) const
 {
-    // Pieces and approximate leaves decide pairs without their triangles: not listed.
+    // With pieces or approximate leaves, collides() is not decided by triangle pairs alone: a
+    // listed pair's contact would not be this checker's answer.
     if (pieceStage_ || leafTolerance_)
         return false;
     return !anyPairWithin(worldFromRobot, {std::max(0.0, translationSlack), std::max(0.0, radialSlack)}, context,

@@ -235,6 +235,14 @@ void expectVerdictMatchesBracketing(const std::string &cfg, int motions)
         const bool verdict = validator.checkMotion(a, b);
         const auto report = validator.checkMotionDetailed(a, b);
         ASSERT_EQ(verdict, report.free) << "motion " << i << " of " << cfg;
+        // Near-pair fronts change what each query costs, never what is certified.
+        validator.setNearPairFronts(false);
+        const bool verdictWithoutFronts = validator.checkMotion(a, b);
+        const auto reportWithoutFronts = validator.checkMotionDetailed(a, b);
+        validator.setNearPairFronts(true);
+        ASSERT_EQ(verdictWithoutFronts, verdict) << "motion " << i << " of " << cfg;
+        ASSERT_EQ(reportWithoutFronts.lastFree, report.lastFree) << "motion " << i << " of " << cfg;
+        ASSERT_EQ(reportWithoutFronts.blocked, report.blocked) << "motion " << i << " of " << cfg;
         if (!verdict)
         {
             ++blocked;
@@ -249,9 +257,10 @@ void expectVerdictMatchesBracketing(const std::string &cfg, int motions)
                 << "accepted motion " << i << " of " << cfg << " touches at " << double(k) / steps;
         }
     }
-    // Both outcomes occur, so both paths are exercised.
+    // Both outcomes occur, so both paths are exercised, and so do fronts.
     EXPECT_GT(free, 0) << cfg;
     EXPECT_GT(blocked, 0) << cfg;
+    EXPECT_GT(validator.nearPairFrontsListed(), 0u) << cfg;
     si->freeState(a);
     si->freeState(b);
     si->freeState(s);

@@ -254,3 +254,58 @@ TEST(SweptDistance, IntervalsCertifiedByTheirNearPairsAreFreeUnderDenseSampling)
     EXPECT_GT(certifiedByPairs, 10u);
     EXPECT_GT(touchingSeen, 0u);
 }
+
+TEST(SweptDistance, NearPairListsRefuseWhatPairsCannotDecide)
+{
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
+    test::TestRandom rng(test::seeded(36));
+    const auto poses = test::randomPoses(problem, 60, rng);
+    QueryContext context;
+    std::vector<TrianglePair> near;
+    // The limit: a list of n pairs needs a limit of at least n.
+    const auto obb = makeChecker("obb", problem.scene);
+    std::size_t limitsTried = 0;
+    for (const RigidTransform &pose : poses)
+    {
+        if (!obb->listSweptNearPairs(pose, 1.5, 0.02, 1u << 20, near, context) || near.size() < 2)
+            continue;
+        const std::size_t n = near.size();
+        EXPECT_TRUE(obb->listSweptNearPairs(pose, 1.5, 0.02, n, near, context));
+        EXPECT_EQ(near.size(), n);
+        EXPECT_FALSE(obb->listSweptNearPairs(pose, 1.5, 0.02, n - 1, near, context));
+        ++limitsTried;
+    }
+    EXPECT_GT(limitsTried, 5u);
+    // Zero, negative or non-finite slacks, and non-finite poses, are refused; a filter at a
+    // non-finite pose keeps every pair and counts as a collision.
+    EXPECT_FALSE(obb->listSweptNearPairs(poses[0], 0.0, 0.0, 64, near, context));
+    EXPECT_FALSE(obb->listSweptNearPairs(poses[0], -1.0, 0.5, 64, near, context));
+    EXPECT_FALSE(obb->listSweptNearPairs(poses[0], std::numeric_limits<double>::quiet_NaN(), 0.0, 64, near, context));
+    RigidTransform broken = poses[0];
+    broken.translation.x() = std::numeric_limits<double>::infinity();
+    EXPECT_FALSE(obb->listSweptNearPairs(broken, 1.0, 0.0, 64, near, context));
+    const std::vector<TrianglePair> some{{0, 0}, {1, 2}};
+    EXPECT_TRUE(obb->sweptNearPairsAmong(broken, 1.0, 0.0, some, near, context));
+    EXPECT_EQ(near.size(), some.size());
+    // Leaves decided by convex pieces or approximate spheres: no pair lists.
+    CheckerOptions approximate;
+    approximate.approximateTolerance = 0.01;
+    for (const auto &checker : {makeChecker("lp", problem.scene), makeChecker("lp", problem.scene, approximate),
+                                makeChecker("medial", problem.scene, approximate)})
+        for (const RigidTransform &pose : poses)
+            ASSERT_FALSE(checker->listSweptNearPairs(pose, 1.5, 0.02, 1u << 20, near, context)) << checker->name();
+    // A robot inside a closed obstacle, far from its surfaces: no list with solids (that pose
+    // collides), an empty one for surfaces alone.
+    CollisionScene scene;
+    scene.environment = std::make_shared<const TriangleMesh>(test::boxMesh(Vec3(-10, -10, -10), Vec3(10, 10, 10)));
+    scene.robot = std::make_shared<const TriangleMesh>(test::boxMesh(Vec3(-1, -1, -1), Vec3(1, 1, 1)));
+    const RigidTransform inside{Mat3::Identity(), Vec3(1, 2, 3)};
+    for (const std::string &name : {"auto", "obb", "kdop18"})
+    {
+        EXPECT_FALSE(makeChecker(name, scene)->listSweptNearPairs(inside, 0.5, 0.01, 64, near, context)) << name;
+        EXPECT_TRUE(makeChecker(name, scene, ContactSemantics::SurfaceOnly)
+                        ->listSweptNearPairs(inside, 0.5, 0.01, 64, near, context))
+            << name;
+        EXPECT_TRUE(near.empty()) << name;
+    }
+}

@@ -53,9 +53,9 @@ struct ClearanceSample
 /// cell's centre to the surface, kept in half cells; a point p of the cell subtracts its own
 /// distance from the centre (at most sqrt(3)/2 cells). Face-adjacent free cells are on the same
 /// side of every surface, so one exact point-in-solid test per connected free region labels all
-/// its cells. Marker points (e.g. one vertex per component) get a distance bound in a second
-/// channel, in whole cells from any point of the cell. Immutable after construction; safe to
-/// query from many threads.
+/// its cells. Marker points (e.g. one vertex per component) get a distance bound: measured to each
+/// of them when there are at most eight, else from a second channel of cells, in whole cells from
+/// any point of the cell. Immutable after construction; safe to query from many threads.
 class ClearanceGrid
 {
 public:
@@ -195,10 +195,12 @@ inline ClearanceSample ClearanceGrid::at(const Vec3 &p) const
 
 inline double ClearanceGrid::markerPointClearance(const Vec3 &p, double slack) const
 {
+    if (!p.allFinite())
+        return 0.0;
     double nearest = std::numeric_limits<double>::infinity();
     for (const Vec3 &m : markerPoints_)
         nearest = std::min(nearest, (m - p).squaredNorm());
-    // Rounding in the squares and the root is far below 1e-12 of the distance; NaN gives 0.
+    // Rounding in the squares and the root is far below 1e-12 of the distance.
     const double d = std::sqrt(nearest) * (1.0 - 1e-12) - slack;
     return d > 0.0 ? d : 0.0;
 }

@@ -97,6 +97,12 @@ public:
     /// farther than this from the environment is a near contact.
     double minimumClearance() const { return minimumClearance_; }
 
+    /// Whether uncertified intervals list their near triangle pairs for their parts to test (on by
+    /// default; off, every part queries the whole scene). The verdicts are the same either way.
+    void setNearPairFronts(bool use) { useFronts_ = use; }
+    /// Fronts listed so far (CollisionChecker::listSweptNearPairs calls that succeeded).
+    std::uint64_t nearPairFrontsListed() const { return listedFronts_.load(); }
+
     std::uint64_t validMotions() const { return validCount_.load(); }
     std::uint64_t invalidMotions() const { return invalidCount_.load(); }
     /// Blocked motions bracketed by their exact first contact (see setTranslationContactFinder).
@@ -126,6 +132,7 @@ private:
     double contactTolerance_ = 1e-6;
     bool toleranceIsSegment_ = false;
     bool applyBounds_ = true;
-    mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0}, translationBrackets_{0};
+    bool useFronts_ = true;
+    mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0}, translationBrackets_{0}, listedFronts_{0};
 };
 }  // namespace hcd

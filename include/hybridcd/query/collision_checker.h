@@ -7,6 +7,7 @@
 #include "hybridcd/geometry/rigid_transform.h"
 #include "hybridcd/query/query_context.h"
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -132,25 +133,35 @@ public:
     /// robot and environment triangles that may come within the swept slack at this pose (as
     /// withinSweptDistance measures it), and every other pair is proved farther apart; so proving
     /// the listed pairs apart over a part of a motion interval proves the robot's surface apart from
-    /// the environment's there. Returns false, `near` then meaning nothing, when the checker cannot
+    /// the environment's there (and so the robot free there when some state joined to that part by
+    /// such proofs is known free: neither object enters the other while the surfaces stay apart).
+    /// Returns false, `near` then meaning nothing, when the checker cannot
     /// list pairs (the default), when more than `limit` pairs are near, or when one object is inside
     /// a solid of the other at this pose. Slacks must not both be 0.
     bool listSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                             std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const
     {
         near.clear();
-        if (!(translationSlack > 0.0 || radialSlack > 0.0) || !worldFromRobot.isFinite())
+        if (!(translationSlack > 0.0 || radialSlack > 0.0) || !(translationSlack >= 0.0 && radialSlack >= 0.0) ||
+            !std::isfinite(translationSlack + radialSlack) || !worldFromRobot.isFinite())
             return false;
         return doListSweptNearPairs(worldFromRobot, translationSlack, radialSlack, limit, near, context);
     }
     /// The pairs of `pairs` (from listSweptNearPairs on this checker) that may come within the swept
     /// slack at this pose go into `near`; returns true when one of them intersects at this pose (the
-    /// robot collides there). Without list support every pair stays near.
+    /// robot collides there). Without list support every pair stays near; a non-finite pose or slack
+    /// keeps every pair and counts as a collision, as collides() counts a non-finite pose.
     bool sweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                              const std::vector<TrianglePair> &pairs, std::vector<TrianglePair> &near,
                              QueryContext &context) const
     {
         near.clear();
+        if (!worldFromRobot.isFinite() || !(translationSlack >= 0.0 && radialSlack >= 0.0) ||
+            !std::isfinite(translationSlack + radialSlack))
+        {
+            near = pairs;
+            return true;
+        }
         return doSweptNearPairsAmong(worldFromRobot, translationSlack, radialSlack, pairs, near, context);
     }
     /// Hierarchies built for this checker (empty for brute force). `withVolumeRatios` also measures

@@ -16,7 +16,8 @@ namespace hcd
 struct GridFirstSettings
 {
     std::size_t robotSpheres = 32;  ///< leaves of the robot's cover tree (at most 32; twice that for a footprint)
-    /// Environment grid cells (1 byte each, 2 with a closed robot); a footprint grid gets as many.
+    /// Environment grid cells (1 byte each; 2 with a closed robot and more than eight closed
+    /// environment components); a footprint grid gets as many.
     std::size_t maxCells = std::size_t(1) << 20;
     /// Fewer cells when the robot's cover spheres are large: cells as wide as the median leaf
     /// sphere's radius over this (0: always maxCells), but at least kMinimumCells of them.
