@@ -14,7 +14,6 @@ namespace hcd
 {
 namespace
 {
-constexpr double kUnreached = kNoSeedSquaredDistance;  // squared distance of a cell no seed reaches
 constexpr double kSqrt3 = 1.7320508075688772;
 
 /// The distance from a point of a cell to any point of a seed cell whose centres are
@@ -22,7 +21,7 @@ constexpr double kSqrt3 = 1.7320508075688772;
 /// point may be `queryOffset` cells off its cell's centre, the seed's points half a cell diagonal.
 int unitsBelow(double squared, double queryOffset, int unitsPerCell, int saturate)
 {
-    if (squared >= kUnreached)
+    if (squared >= kNoSeedSquaredDistance)
         return saturate;
     const double units = std::floor(unitsPerCell * (std::sqrt(squared) - queryOffset - 0.5 * kSqrt3) - 1e-9);
     return units <= 0.0 ? 0 : int(std::min<double>(units, saturate));
@@ -133,9 +132,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     labelled_ = solids != nullptr && !planar;
     if (labelled_ && solids->closedComponentCount() > 0)
     {
-        // Face-connected regions by union-find in raster order: a free cell joins its free
-        // neighbours before it along x, y and z. Each region's root is its first cell (a root only
-        // ever joins an earlier one), which gets the point-in-solid test.
+        // Each region's first cell (its root, bvh/grid_regions.h) gets the point-in-solid test.
         const std::vector<std::uint32_t> region = freeRegions(occupiedCell, nx_, ny_, nz_);
         for (std::size_t i = 0; i < cellCount; ++i)
         {

@@ -166,6 +166,25 @@ bool VolumeTreeChecker<Volume>::doWithinSweptDistance(const RigidTransform &worl
 }
 
 template <class Volume>
+bool VolumeTreeChecker<Volume>::trianglePairWithin(const PlacedTriangle &a, std::uint32_t rt, std::uint32_t et,
+                                                   Slack slack, bool proximity, double tolerance,
+                                                   std::uint64_t &tests) const
+{
+    const double triangleDelta = slack.at(robotTriangleReach_[rt]);
+    // Exact comparisons on coordinates need no tolerance; proximity adds its slack.
+    const double boundsSlack = proximity ? triangleDelta * (1.0 + 1e-9) + tolerance : 0.0;
+    const TriangleBounds &eb = environmentTriangleBounds_[et];
+    if ((a.min.array() > eb.max.array() + boundsSlack).any() || (eb.min.array() > a.max.array() + boundsSlack).any())
+        return false;
+    ++tests;
+    const TriangleMesh &env = *scene_.environment;
+    const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
+    return !proximity ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
+                      : trianglesWithinDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2,
+                                                triangleDelta * (1.0 + 1e-9) + tolerance);
+}
+
+template <class Volume>
 bool VolumeTreeChecker<Volume>::doListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack,
                                                      double radialSlack, std::size_t limit,
                                                      std::vector<TrianglePair> &near, QueryContext &context) const
@@ -193,17 +212,12 @@ bool VolumeTreeChecker<Volume>::doSweptNearPairsAmong(const RigidTransform &worl
     for (const TrianglePair &p : pairs)
     {
         const PlacedTriangle &a = placed.triangle(p.robot);
-        const double delta = slack.at(robotTriangleReach_[p.robot]) * (1.0 + 1e-9) + tolerance;
-        const TriangleBounds &eb = environmentTriangleBounds_[p.environment];
-        if ((a.min.array() > eb.max.array() + delta).any() || (eb.min.array() > a.max.array() + delta).any())
-            continue;
-        ++triangleTests;
-        const Vec3 &b0 = env.corner(p.environment, 0), &b1 = env.corner(p.environment, 1),
-                   &b2 = env.corner(p.environment, 2);
-        if (!trianglesWithinDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2, delta))
+        if (!trianglePairWithin(a, p.robot, p.environment, slack, /*proximity=*/true, tolerance, triangleTests))
             continue;
         near.push_back(p);
-        touching = touching || trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2);
+        touching =
+            touching || trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], env.corner(p.environment, 0),
+                                           env.corner(p.environment, 1), env.corner(p.environment, 2));
     }
     context.stats.primitiveTests += triangleTests;
     return touching;
@@ -230,22 +244,8 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
     PlacedPieces placedPieces(worldFromRobot, context);
 
     std::uint64_t boxTests = 0, triangleTests = 0, pieceTests = 0;
-    // Whether robot triangle rt and environment triangle et touch (collision) or come within the
-    // slack (proximity): an exact axis-aligned reject first, then the exact test.
     const auto trianglesWithin = [&](std::uint32_t rt, std::uint32_t et) {
-        const PlacedTriangle &a = placed.triangle(rt);
-        const double triangleDelta = slack.at(robotTriangleReach_[rt]);
-        // Exact comparisons on coordinates need no tolerance; proximity adds its slack.
-        const double boundsSlack = proximity ? triangleDelta * (1.0 + 1e-9) + tolerance : 0.0;
-        const TriangleBounds &eb = environmentTriangleBounds_[et];
-        if ((a.min.array() > eb.max.array() + boundsSlack).any() ||
-            (eb.min.array() > a.max.array() + boundsSlack).any())
-            return false;
-        ++triangleTests;
-        const Vec3 &b0 = env.corner(et, 0), &b1 = env.corner(et, 1), &b2 = env.corner(et, 2);
-        return !proximity ? trianglesIntersect(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2)
-                          : trianglesWithinDistance(a.corners[0], a.corners[1], a.corners[2], b0, b1, b2,
-                                                    triangleDelta * (1.0 + 1e-9) + tolerance);
+        return trianglePairWithin(placed.triangle(rt), rt, et, slack, proximity, tolerance, triangleTests);
     };
     const auto record = [&] {
         context.stats.boundingVolumeTests += boxTests;

@@ -142,8 +142,8 @@ public:
                             std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const
     {
         near.clear();
-        if (!(translationSlack > 0.0 || radialSlack > 0.0) || !(translationSlack >= 0.0 && radialSlack >= 0.0) ||
-            !std::isfinite(translationSlack + radialSlack) || !worldFromRobot.isFinite())
+        if (!slacksAreFinite(translationSlack, radialSlack) || !(translationSlack > 0.0 || radialSlack > 0.0) ||
+            !worldFromRobot.isFinite())
             return false;
         return doListSweptNearPairs(worldFromRobot, translationSlack, radialSlack, limit, near, context);
     }
@@ -156,8 +156,7 @@ public:
                              QueryContext &context) const
     {
         near.clear();
-        if (!worldFromRobot.isFinite() || !(translationSlack >= 0.0 && radialSlack >= 0.0) ||
-            !std::isfinite(translationSlack + radialSlack))
+        if (!worldFromRobot.isFinite() || !slacksAreFinite(translationSlack, radialSlack))
         {
             near = pairs;
             return true;
@@ -186,6 +185,12 @@ public:
     bool exportLevel(int level, std::ostream &obj, const RigidTransform &worldFromRobot) const;
 
 private:
+    /// Both slacks non-negative and finite (NaN fails).
+    static bool slacksAreFinite(double translationSlack, double radialSlack)
+    {
+        return translationSlack >= 0.0 && radialSlack >= 0.0 && std::isfinite(translationSlack + radialSlack);
+    }
+
     // What each checker implements; the public forms above call these.
     virtual bool doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const = 0;
     virtual double doDistance(const RigidTransform &worldFromRobot, QueryContext &context) const = 0;

@@ -10,6 +10,8 @@
 
 namespace hcd
 {
+struct PlacedTriangle;
+
 /// Simultaneous descent of two trees, always splitting the node with the larger circumscribed
 /// sphere, with an early exit on the first intersecting triangle pair. Each node pair is tested
 /// with the spheres first, then the volumes (VolumeTraits<Volume>::overlap, conservative); at the
@@ -88,6 +90,11 @@ private:
                        std::vector<ContactPair> *found = nullptr, std::size_t limit = 0,
                        std::vector<TrianglePair> *near = nullptr) const;
     double toleranceFor(const RigidTransform &worldFromRobot) const;
+    /// The leaf test of every pair query: whether robot triangle rt, placed as `a`, and environment
+    /// triangle et touch (no proximity: the exact intersection test) or come within the slack at
+    /// rt's reach (proximity), after an exact axis-aligned reject; `tests` counts the exact tests.
+    bool trianglePairWithin(const PlacedTriangle &a, std::uint32_t rt, std::uint32_t et, Slack slack, bool proximity,
+                            double tolerance, std::uint64_t &tests) const;
 
     struct TriangleBounds
     {
