@@ -168,13 +168,16 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         int fewMarkersNear = 0;
         std::uniform_real_distribution<double> u(-1.6, 1.6), far(-4.0, 4.0);
         // A fixed count (cheap even under the sanitizers): the "not vacuous" checks below need it.
-        // One point in four may lie beyond the grid (which ends 0.3 past the mesh's box).
+        // One point in four may lie beyond the grid (which ends 0.3 past the mesh's box); another
+        // one in four is drawn inside some solid (the first of up to 50 draws that is), so that
+        // points inside solids are seen whatever the seed.
         constexpr int kPoints = 3000;
         int insideSeen = 0, outsideSeen = 0, positiveSeen = 0;
         for (int i = 0; i < kPoints; ++i)
         {
-            const Vec3 p =
-                i % 4 == 0 ? scale * Vec3(far(rng), far(rng), far(rng)) : scale * Vec3(u(rng), u(rng), u(rng));
+            Vec3 p = i % 4 == 0 ? scale * Vec3(far(rng), far(rng), far(rng)) : scale * Vec3(u(rng), u(rng), u(rng));
+            for (int draw = 0; i % 4 == 1 && draw < 50 && !solids.insideAnySolid(p); ++draw)
+                p = scale * Vec3(u(rng), u(rng), u(rng));
             const ClearanceSample s = grid.at(p);
             const double d = pointMeshDistance(*mesh, p);
             ASSERT_LE(s.clearance, d) << "scale " << scale << " point " << p.transpose();
