@@ -79,9 +79,9 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
               << (distance ? "distance" : "check") << " | median vs fcl | in collision | "
               << (distance ? "differences from " + (names.empty() ? std::string("-") : names.front())
                            : std::string("disagreements with bruteforce"))
-              << " | build ms | volume tests/" << (distance ? "distance" : "check")
-              << " | median vs fcl, clock's cost included |\n"
-              << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+              << " | build ms | volume tests/" << (distance ? "distance" : "check") << " | triangle tests/"
+              << (distance ? "distance" : "check") << " | median vs fcl, clock's cost included |\n"
+              << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string &cfg : problems)
     {
         const LoadedProblem problem = loadProblem(cfg);
@@ -149,7 +149,8 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
                 << 100.0 * double(colliding) / double(poses.size()) << "% | "
                 << (reference || distance ? std::to_string(disagreements) : std::string("-")) << " | "
                 << std::setprecision(1) << buildMs << " | " << std::setprecision(0)
-                << double(context.stats.boundingVolumeTests) / double(poses.size()) << " | %RAWRATIO% |";
+                << double(context.stats.boundingVolumeTests) / double(poses.size()) << " | "
+                << double(context.stats.primitiveTests) / double(poses.size()) << " | %RAWRATIO% |";
             rows.push_back(row.str());
         }
         std::size_t r = 0;

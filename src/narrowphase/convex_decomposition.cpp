@@ -95,11 +95,39 @@ double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const
     return worst;
 }
 
-double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
-                          const std::vector<std::uint32_t> &triangles)
+int concavitySamplesPerEdge(const ConvexPiece &hull)
+{
+    if (hull.vertices.empty())
+        return 4;
+    Vec3 lo = hull.vertices.front(), hi = lo;
+    for (const Vec3 &v : hull.vertices)
+    {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    // Facet samples at least as dense as approximationBound's interior grid (eight steps across
+    // the box's longest side): the box's diagonal over that spacing, 8 to 14.
+    const double longest = (hi - lo).maxCoeff();
+    if (!(longest > 0.0))
+        return 4;
+    return std::clamp(int(std::ceil(8.0 * (hi - lo).norm() / longest)), 4, 32);
+}
+
+namespace
+{
+// A piece's two distances to its triangles: the largest found on its surface (facet samples at least
+// as dense as the interior grid of approximationBound) and approximationBound itself.
+struct PieceDistances
+{
+    double surface = 0.0;
+    double bound = 0.0;
+};
+
+PieceDistances measurePiece(const ConvexPiece &hull, const TriangleMesh &mesh,
+                            const std::vector<std::uint32_t> &triangles)
 {
     if (triangles.size() == 1)
-        return 0.0;  // the hull is the triangle itself
+        return {};  // the hull is the triangle itself
     Vec3 lo = hull.vertices.front(), hi = lo;
     for (const Vec3 &v : hull.vertices)
     {
@@ -109,11 +137,10 @@ double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
     constexpr int kSteps = 8;
     const double spacing = (hi - lo).maxCoeff() / kSteps;
     if (!(spacing > 0.0))
-        return 0.0;
-    // Facet samples at least as dense as the interior grid.
-    const double edge = (hi - lo).norm();
-    const int samplesPerEdge = std::max(4, int(std::ceil(edge / spacing)));
-    double worst = measureConcavity(hull, mesh, triangles, std::min(samplesPerEdge, 32));
+        return {};
+    PieceDistances d;
+    d.surface = measureConcavity(hull, mesh, triangles, concavitySamplesPerEdge(hull));
+    double worst = d.surface;
     const double slack = 1e-9 * (1.0 + hull.magnitude());
     for (int i = 0; i <= kSteps; ++i)
         for (int j = 0; j <= kSteps; ++j)
@@ -123,7 +150,15 @@ double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
                 if (hull.maxViolation(p) <= slack)
                     worst = std::max(worst, distanceToTriangles(p, mesh, triangles));
             }
-    return worst + spacing;
+    d.bound = worst + spacing;
+    return d;
+}
+}  // namespace
+
+double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
+                          const std::vector<std::uint32_t> &triangles)
+{
+    return measurePiece(hull, mesh, triangles).bound;
 }
 
 ConvexDecomposition decomposeClusters(const TriangleMesh &mesh, const std::vector<std::uint32_t> &triangleOrder,
@@ -147,8 +182,9 @@ ConvexDecomposition decomposeClusters(const TriangleMesh &mesh, const std::vecto
         }
         d.pieceOfNode[cluster.node] = std::int32_t(d.pieces.size());
         d.pieces.push_back(ConvexPiece::hullOf(points));
-        d.concavity.push_back(measureConcavity(d.pieces.back(), mesh, triangles));
-        d.approximationBound.push_back(approximationBound(d.pieces.back(), mesh, triangles));
+        const PieceDistances distances = measurePiece(d.pieces.back(), mesh, triangles);
+        d.concavity.push_back(distances.surface);
+        d.approximationBound.push_back(distances.bound);
     }
     d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return d;

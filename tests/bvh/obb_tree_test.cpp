@@ -106,6 +106,69 @@ TEST(ObbTree, ContainsEveryTriangleOnOmplAppMeshes)
     expectContainsSubtree(VolumeTree<Obb>(mesh), obbContains);
 }
 
+namespace
+{
+const auto aabbContains = [](const Aabb &b, const Vec3 &p) { return b.contains(p); };
+
+// Two rows of 100 small triangles, each row 40 long in x, 10 apart in y: the mesh's longest
+// direction is x, yet the cheap split puts each row in a child of its own.
+std::shared_ptr<TriangleMesh> twoRows()
+{
+    auto mesh = std::make_shared<TriangleMesh>();
+    for (double y : {-5.0, 5.0})
+        for (int i = 0; i < 100; ++i)
+        {
+            const double x = -20.0 + 0.4 * i;
+            const std::uint32_t v = std::uint32_t(mesh->vertices.size());
+            mesh->vertices.push_back(Vec3(x, y, 0.0));
+            mesh->vertices.push_back(Vec3(x + 0.3, y + 0.5, 0.0));
+            mesh->vertices.push_back(Vec3(x + 0.1, y, 0.5));
+            mesh->triangles.push_back({v, v + 1, v + 2});
+        }
+    return mesh;
+}
+
+// Whether each child of the root holds the triangles of one row only.
+template <class Volume>
+bool rootSplitsTheRows(const VolumeTree<Volume> &tree)
+{
+    const auto &nodes = tree.nodes();
+    for (int child = 0; child < 2; ++child)
+    {
+        const auto &n = nodes[std::size_t(nodes[0].firstChild + child)];
+        int rowsSeen[2] = {0, 0};
+        for (std::uint32_t k = 0; k < n.triangleCount; ++k)
+            ++rowsSeen[tree.mesh().corner(tree.triangleOrder()[n.firstTriangle + k], 0).y() > 0.0 ? 1 : 0];
+        if (rowsSeen[0] > 0 && rowsSeen[1] > 0)
+            return false;
+    }
+    return true;
+}
+}  // namespace
+
+TEST(AabbTree, ContainsEveryTriangleOfItsSubtree)
+{
+    // A random soup (one and four triangles per leaf), flat grids at tiny and huge scales, two rows.
+    test::TestRandom rng(11);
+    std::vector<std::pair<std::shared_ptr<TriangleMesh>, unsigned>> cases{{randomSoup(rng, 2000), 1u}, {twoRows(), 1u}};
+    cases.emplace_back(cases.front().first, 4u);
+    for (double scale : {1e-6, 1.0, 1e9})
+        cases.emplace_back(flatGrid(29, scale), 1u);
+    for (const auto &[mesh, leaf] : cases)
+        expectContainsSubtree(VolumeTree<Aabb>(mesh, leaf), aabbContains);
+}
+
+TEST(BoxTrees, SplitWhereTheChildrenAreSmallestNotAlongTheLongestDirection)
+{
+    // Gottschalk's rule alone would cut both rows across x; the surface area heuristic separates them.
+    const auto mesh = twoRows();
+    const VolumeTree<Obb> obbs(mesh);
+    const VolumeTree<Aabb> aabbs(mesh);
+    expectContainsSubtree(obbs, obbContains);
+    EXPECT_TRUE(rootSplitsTheRows(obbs));
+    EXPECT_TRUE(rootSplitsTheRows(aabbs));
+}
+
 TEST(ObbOverlap, NeverMissesOverlapFoundBySampling)
 {
     // Reference: a shared point found by sampling one box proves overlap; the SAT must agree.

@@ -344,7 +344,8 @@ void checkConcavity(const TriangleMesh &mesh, unsigned leafSize, const std::stri
         for (const Vec3 &s : uniformSurfaceSamples(hullSurface(piece), uniformSamples, rng))
             uniform = std::max(uniform, distanceToTriangles(s, mesh, triangles));
         double dense = uniform;
-        for (const Vec3 &s : fanGridSamples(piece, 8))
+        // Twice the library's density: a superset of the points it measured.
+        for (const Vec3 &s : fanGridSamples(piece, 2 * concavitySamplesPerEdge(piece)))
             dense = std::max(dense, distanceToTriangles(s, mesh, triangles));
 
         ++agreement.pieces;

@@ -48,6 +48,8 @@ struct VolumeTraits<Obb>
         b.halfExtents.maxCoeff(&longest);
         return b.axes.col(longest);
     }
+    /// The box's axes (columns, world frame): the split candidates, along which children are measured.
+    static const Mat3 &splitFrame(const Obb &b) { return b.axes; }
     static const Vec3 &center(const Obb &b) { return b.center; }
     static double radius(const Obb &b) { return b.halfExtents.norm() * (1.0 + 1e-12); }
     static double volume(const Obb &b) { return b.volume(); }
@@ -226,6 +228,8 @@ struct VolumeTraits<Aabb>
     static constexpr const char *kName = "AABB";
     static Aabb fit(const std::vector<Vec3> &points) { return Aabb::fit(points); }
     static Vec3 splitAxis(const Aabb &, const std::vector<Vec3> &points) { return principalAxis(points); }
+    /// The world axes: the split candidates besides the principal axis, along which children are measured.
+    static Mat3 splitFrame(const Aabb &) { return Mat3::Identity(); }
     static const Vec3 &center(const Aabb &b) { return b.center; }
     static double radius(const Aabb &b) { return b.halfExtents.norm() * (1.0 + 1e-12); }
     static double volume(const Aabb &b) { return b.volume(); }

@@ -7,9 +7,10 @@
 // The node's triangles are split across the volume's split axis (its longest direction, or the
 // principal axis of the corners for volumes without one) at the mean
 // of their centroids (Gottschalk's rule); if every centroid lands on one side, at the median
-// instead. Nodes are stored in one array with the two children of a node adjacent; leaves hold a
-// run of the tree's reordered triangle list. The same code builds the OBB tree, the ellipsoid
-// tree and the hybrid tree, so they differ only in their volumes.
+// instead. Boxes (OBBs, AABBs) weigh that axis against the box's own three axes by the surface
+// area heuristic and split along the cheapest. Nodes are stored in one array with the two children of a node adjacent;
+// leaves hold a run of the tree's reordered triangle list. The same code builds the OBB tree, the ellipsoid tree and
+// the hybrid tree, so they differ only in their volumes.
 #pragma once
 
 #include "hybridcd/bv/principal_axis.h"
@@ -17,8 +18,10 @@
 #include "hybridcd/geometry/triangle_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <type_traits>
@@ -59,8 +62,8 @@ public:
             centroids[t] = (mesh_->corner(t, 0) + mesh_->corner(t, 1) + mesh_->corner(t, 2)) / 3.0;
         nodes_.reserve(2 * n);
         nodes_.emplace_back();
-        std::vector<Vec3> scratch;
-        build(0, 0, std::uint32_t(n), 1, centroids, scratch);
+        std::vector<Vec3> scratch, local;
+        build(0, 0, std::uint32_t(n), 1, centroids, scratch, local);
         if constexpr (kMergeable)
             for (Node &node : nodes_)
             {
@@ -104,7 +107,7 @@ public:
 
 private:
     void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::size_t level,
-               const std::vector<Vec3> &centroids, std::vector<Vec3> &scratch)
+               const std::vector<Vec3> &centroids, std::vector<Vec3> &scratch, std::vector<Vec3> &local)
     {
         depth_ = std::max(depth_, level);
         Node &self = nodes_[node];
@@ -133,6 +136,8 @@ private:
             if (leaf)
                 return;
             axis = Traits::splitAxis(self.volume, scratch);
+            if constexpr (HasSplitFrame<Traits>::value)
+                axis = surfaceAreaSplitAxis(Traits::splitFrame(self.volume), axis, scratch, local);
         }
 
         double mean = 0.0;
@@ -153,10 +158,77 @@ private:
         nodes_[node].firstChild = std::int32_t(left);  // `self` may dangle after the emplace below
         nodes_.emplace_back();
         nodes_.emplace_back();
-        build(left, begin, split, level + 1, centroids, scratch);
-        build(left + 1, split, end, level + 1, centroids, scratch);
+        build(left, begin, split, level + 1, centroids, scratch, local);
+        build(left + 1, split, end, level + 1, centroids, scratch, local);
         if constexpr (kMergeable)
             nodes_[node].volume = Traits::tightUnion(nodes_[left].volume, nodes_[left + 1].volume);
+    }
+
+    // Of the frame's three axes and `fallback` (world directions), the one whose split at the mean
+    // centroid gives the children the smallest sum of box surface area times triangle count, boxes
+    // measured along the frame's axes (the surface area heuristic: a pair test reaches a child about
+    // as often as its surface is met, and then costs about its triangle count). `corners` holds the
+    // node's triangles' corners, three per triangle; `local` is scratch. Large nodes are judged on a
+    // regular sample of kSplitSample triangles. Measured in bench/README.md (section 2, "Split axes").
+    Vec3 surfaceAreaSplitAxis(const Mat3 &frame, const Vec3 &fallback, const std::vector<Vec3> &corners,
+                              std::vector<Vec3> &local) const
+    {
+        constexpr std::size_t kSplitSample = 1024;
+        const std::size_t triangles = corners.size() / 3;
+        const std::size_t stride = std::max<std::size_t>(1, triangles / kSplitSample);
+        // Per sampled triangle, in frame coordinates: its box and three times its centroid.
+        local.clear();
+        Vec3 sum = Vec3::Zero();
+        for (std::size_t t = 0; t < triangles; t += stride)
+        {
+            const Vec3 q0 = frame.transpose() * corners[3 * t], q1 = frame.transpose() * corners[3 * t + 1],
+                       q2 = frame.transpose() * corners[3 * t + 2];
+            local.push_back(q0.cwiseMin(q1).cwiseMin(q2));
+            local.push_back(q0.cwiseMax(q1).cwiseMax(q2));
+            local.push_back(q0 + q1 + q2);
+            sum += local.back();
+        }
+        const std::size_t sampled = local.size() / 3;
+        const Vec3 mean3 = sum / double(sampled);
+        // The fallback in frame coordinates; an OBB's is one of its own axes, measured once.
+        const Vec3 own = frame.transpose() * fallback;
+        const bool fallbackIsAnAxis = (own.cwiseAbs().array() > 1.0 - 1e-12).any();
+        const std::array<Vec3, 4> candidates{own, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+        Vec3 best = fallback;
+        double bestCost = std::numeric_limits<double>::infinity();
+        for (std::size_t c = fallbackIsAnAxis ? 1 : 0; c < candidates.size(); ++c)
+        {
+            const Vec3 &d = candidates[c];  // frame coordinates
+            const double mean = d.dot(mean3);
+            Vec3 lo[2], hi[2];
+            double count[2] = {0.0, 0.0};
+            for (int side = 0; side < 2; ++side)
+            {
+                lo[side] = Vec3::Constant(std::numeric_limits<double>::infinity());
+                hi[side] = -lo[side];
+            }
+            for (std::size_t t = 0; t < sampled; ++t)
+            {
+                const int side = d.dot(local[3 * t + 2]) < mean ? 0 : 1;
+                count[side] += 1.0;
+                lo[side] = lo[side].cwiseMin(local[3 * t]);
+                hi[side] = hi[side].cwiseMax(local[3 * t + 1]);
+            }
+            if (count[0] == 0.0 || count[1] == 0.0)
+                continue;  // the median split decides such a node
+            double cost = 0.0;
+            for (int side = 0; side < 2; ++side)
+            {
+                const Vec3 e = hi[side] - lo[side];
+                cost += (e.x() * e.y() + e.y() * e.z() + e.z() * e.x()) * count[side];
+            }
+            if (cost < bestCost)
+            {
+                bestCost = cost;
+                best = c == 0 ? fallback : frame.col(Eigen::Index(c - 1));
+            }
+        }
+        return best;
     }
 
     // Every `stride`-th corner of the triangles order_[begin, end), in order.
@@ -167,6 +239,16 @@ private:
         for (std::size_t i = 0; i < corners; i += stride)
             out.push_back(mesh_->corner(order_[begin + i / 3], int(i % 3)));
     }
+
+    // Volumes whose splits are chosen by surface area, among the axes of VolumeTraits::splitFrame.
+    template <class T, class = void>
+    struct HasSplitFrame : std::false_type
+    {
+    };
+    template <class T>
+    struct HasSplitFrame<T, std::void_t<decltype(T::splitFrame(std::declval<const Volume &>()))>> : std::true_type
+    {
+    };
 
     // Volumes whose parent is the union of its children's (k-DOPs: tight slabs, a margin last);
     // they split along the corners' principal axis, as their splitAxis() does.

@@ -2,11 +2,12 @@
 // Cutting a mesh into convex pieces for the LP narrow phase.
 //
 // The pieces are the leaves of a volume tree built with at most K triangles per leaf: the top-down
-// split already groups nearby triangles along the longest direction, so each leaf's triangles form
+// split already groups nearby triangles into children of small surface, so each leaf's triangles form
 // a compact cluster, and its convex hull (Qhull) is the piece. Every triangle lies in the piece of
 // its leaf by construction. Each piece records its concavity: how far its hull surface stands out
 // from the triangles it covers (0 when the triangles are the hull, e.g. a single triangle or a
-// convex closed cluster), measured on points spread over every hull facet.
+// convex closed cluster), measured on points spread over every hull facet
+// (concavitySamplesPerEdge).
 //
 // The leaves come in as plain data (the tree's triangle order and each leaf's run of it), so this
 // layer does not depend on the hierarchies; query/leaf_decomposition.h reads them off a VolumeTree.
@@ -64,6 +65,10 @@ double hullVolume(const ConvexPiece &hull);
 /// Exactly 0 for a piece that is the hull of a single triangle.
 double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
                           const std::vector<std::uint32_t> &triangles);
+
+/// The facet sampling density the decomposition measures concavity with (samplesPerEdge of
+/// measureConcavity): as fine as approximationBound's interior grid, 8 to 14 for a solid hull.
+int concavitySamplesPerEdge(const ConvexPiece &hull);
 
 /// Largest distance from points on the hull's facets (their corners, centroids and a grid of
 /// `samplesPerEdge` x `samplesPerEdge` barycentric points) to the nearest of `triangles` of `mesh`.
