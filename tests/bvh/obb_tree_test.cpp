@@ -169,6 +169,36 @@ TEST(BoxTrees, SplitWhereTheChildrenAreSmallestNotAlongTheLongestDirection)
     EXPECT_TRUE(rootSplitsTheRows(aabbs));
 }
 
+TEST(BoxTrees, SplitPlanesNeedNotPassThroughTheMeanCentroid)
+{
+    // A row of 100 small triangles over x in [0, 10] and one triangle at x = 100: the mean centroid
+    // (x near 6) would cut the row in two and leave one child spanning [6, 100]; the cheapest plane
+    // leaves the far triangle alone.
+    auto mesh = std::make_shared<TriangleMesh>();
+    const auto addTriangle = [&](double x) {
+        const std::uint32_t v = std::uint32_t(mesh->vertices.size());
+        mesh->vertices.push_back(Vec3(x, 0.0, 0.0));
+        mesh->vertices.push_back(Vec3(x + 0.1, 0.5, 0.0));
+        mesh->vertices.push_back(Vec3(x, 0.2, 0.4));
+        mesh->triangles.push_back({v, v + 1, v + 2});
+    };
+    for (int i = 0; i < 100; ++i)
+        addTriangle(0.1 * i);
+    addTriangle(100.0);
+    const auto farTriangleAlone = [](const auto &tree) {
+        const auto &nodes = tree.nodes();
+        const auto &a = nodes[std::size_t(nodes[0].firstChild)], &b = nodes[std::size_t(nodes[0].firstChild + 1)];
+        const auto &single = a.triangleCount == 1 ? a : b;
+        return single.triangleCount == 1 && tree.triangleOrder()[single.firstTriangle] == 100u;
+    };
+    const VolumeTree<Obb> obbs(mesh);
+    const VolumeTree<Aabb> aabbs(mesh);
+    expectContainsSubtree(obbs, obbContains);
+    expectContainsSubtree(aabbs, aabbContains);
+    EXPECT_TRUE(farTriangleAlone(obbs));
+    EXPECT_TRUE(farTriangleAlone(aabbs));
+}
+
 TEST(ObbOverlap, NeverMissesOverlapFoundBySampling)
 {
     // Reference: a shared point found by sampling one box proves overlap; the SAT must agree.

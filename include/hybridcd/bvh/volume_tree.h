@@ -7,8 +7,9 @@
 // The node's triangles are split across the volume's split axis (its longest direction, or the
 // principal axis of the corners for volumes without one) at the mean
 // of their centroids (Gottschalk's rule); if every centroid lands on one side, at the median
-// instead. Boxes (OBBs, AABBs) weigh that axis against the box's own three axes by the surface
-// area heuristic and split along the cheapest. Nodes are stored in one array with the two children of a node adjacent;
+// instead. Boxes (OBBs, AABBs) weigh that split against planes across the box's own three axes,
+// at the mean and at even steps between the extreme centroids, by the surface area heuristic, and
+// take the cheapest. Nodes are stored in one array with the two children of a node adjacent;
 // leaves hold a run of the tree's reordered triangle list. The same code builds the OBB tree, the ellipsoid tree and
 // the hybrid tree, so they differ only in their volumes.
 #pragma once
@@ -115,6 +116,8 @@ private:
         self.triangleCount = end - begin;
         const bool leaf = end - begin <= maxLeafTriangles_;
         Vec3 axis;
+        bool hasCut = false;
+        double cut = 0.0;
         if constexpr (kMergeable)
         {
             // Inner nodes are merged from their children below, so only leaves visit their
@@ -137,15 +140,23 @@ private:
                 return;
             axis = Traits::splitAxis(self.volume, scratch);
             if constexpr (HasSplitFrame<Traits>::value)
-                axis = surfaceAreaSplitAxis(Traits::splitFrame(self.volume), axis, scratch, local);
+            {
+                const SplitPlane plane = surfaceAreaSplit(Traits::splitFrame(self.volume), axis, scratch, local);
+                axis = plane.axis;
+                hasCut = plane.hasCut;
+                cut = plane.cut;
+            }
         }
 
-        double mean = 0.0;
-        for (std::uint32_t i = begin; i < end; ++i)
-            mean += axis.dot(centroids[order_[i]]);
-        mean /= double(end - begin);
+        if (!hasCut)
+        {
+            cut = 0.0;  // the mean centroid
+            for (std::uint32_t i = begin; i < end; ++i)
+                cut += axis.dot(centroids[order_[i]]);
+            cut /= double(end - begin);
+        }
         auto first = order_.begin() + begin, last = order_.begin() + end;
-        auto middle = std::partition(first, last, [&](std::uint32_t t) { return axis.dot(centroids[t]) < mean; });
+        auto middle = std::partition(first, last, [&](std::uint32_t t) { return axis.dot(centroids[t]) < cut; });
         if (middle == first || middle == last)
         {
             middle = first + (end - begin) / 2;
@@ -164,16 +175,37 @@ private:
             nodes_[node].volume = Traits::tightUnion(nodes_[left].volume, nodes_[left + 1].volume);
     }
 
-    // Of the frame's three axes and `fallback` (world directions), the one whose split at the mean
-    // centroid gives the children the smallest sum of box surface area times triangle count, boxes
-    // measured along the frame's axes (the surface area heuristic: a pair test reaches a child about
-    // as often as its surface is met, and then costs about its triangle count). `corners` holds the
-    // node's triangles' corners, three per triangle; `local` is scratch. Large nodes are judged on a
-    // regular sample of kSplitSample triangles. Measured in bench/README.md (section 2, "Split axes").
-    Vec3 surfaceAreaSplitAxis(const Mat3 &frame, const Vec3 &fallback, const std::vector<Vec3> &corners,
-                              std::vector<Vec3> &local) const
+    // Where a box node splits: along `axis` (world), its triangles with axis . centroid < cut on one
+    // side; without a cut, at the mean centroid.
+    struct SplitPlane
+    {
+        Vec3 axis;
+        bool hasCut = false;
+        double cut = 0.0;
+    };
+
+    // Children's box surface area (half of it) times their triangle counts, boxes in frame coordinates.
+    static double splitCost(const Vec3 &lo0, const Vec3 &hi0, double count0, const Vec3 &lo1, const Vec3 &hi1,
+                            double count1)
+    {
+        const Vec3 e0 = hi0 - lo0, e1 = hi1 - lo1;
+        return (e0.x() * e0.y() + e0.y() * e0.z() + e0.z() * e0.x()) * count0 +
+               (e1.x() * e1.y() + e1.y() * e1.z() + e1.z() * e1.x()) * count1;
+    }
+
+    // The surface area heuristic (a pair test reaches a child about as often as its surface is met,
+    // and then costs about its triangle count): of the planes across the frame's three axes and
+    // `fallback` (world directions) at the mean centroid and at kSplitBins - 1 even steps between
+    // the extreme centroids, the one whose children have the smallest box surface area times
+    // triangle count, boxes measured along the frame's axes. `corners` holds the node's triangles'
+    // corners, three per triangle; `local` is scratch. Large nodes are judged on a regular sample
+    // of kSplitSample triangles. Measured in bench/README.md (section 1, "Clearance").
+    SplitPlane surfaceAreaSplit(const Mat3 &frame, const Vec3 &fallback, const std::vector<Vec3> &corners,
+                                std::vector<Vec3> &local) const
     {
         constexpr std::size_t kSplitSample = 1024;
+        constexpr int kSplitBins = 8;
+        constexpr double kInfinity = std::numeric_limits<double>::infinity();
         const std::size_t triangles = corners.size() / 3;
         const std::size_t stride = std::max<std::size_t>(1, triangles / kSplitSample);
         // Per sampled triangle, in frame coordinates: its box and three times its centroid.
@@ -194,38 +226,84 @@ private:
         const Vec3 own = frame.transpose() * fallback;
         const bool fallbackIsAnAxis = (own.cwiseAbs().array() > 1.0 - 1e-12).any();
         const std::array<Vec3, 4> candidates{own, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
-        Vec3 best = fallback;
-        double bestCost = std::numeric_limits<double>::infinity();
+        SplitPlane best{fallback};
+        double bestCost = kInfinity;
         for (std::size_t c = fallbackIsAnAxis ? 1 : 0; c < candidates.size(); ++c)
         {
             const Vec3 &d = candidates[c];  // frame coordinates
+            const Vec3 axis = c == 0 ? fallback : Vec3(frame.col(Eigen::Index(c - 1)));
+            // At the mean: the rule the node falls back on.
             const double mean = d.dot(mean3);
-            Vec3 lo[2], hi[2];
+            Vec3 lo[2] = {Vec3::Constant(kInfinity), Vec3::Constant(kInfinity)};
+            Vec3 hi[2] = {Vec3::Constant(-kInfinity), Vec3::Constant(-kInfinity)};
             double count[2] = {0.0, 0.0};
-            for (int side = 0; side < 2; ++side)
-            {
-                lo[side] = Vec3::Constant(std::numeric_limits<double>::infinity());
-                hi[side] = -lo[side];
-            }
+            double lowest = kInfinity, highest = -kInfinity;
             for (std::size_t t = 0; t < sampled; ++t)
             {
-                const int side = d.dot(local[3 * t + 2]) < mean ? 0 : 1;
+                const double p = d.dot(local[3 * t + 2]);
+                lowest = std::min(lowest, p);
+                highest = std::max(highest, p);
+                const int side = p < mean ? 0 : 1;
                 count[side] += 1.0;
                 lo[side] = lo[side].cwiseMin(local[3 * t]);
                 hi[side] = hi[side].cwiseMax(local[3 * t + 1]);
             }
-            if (count[0] == 0.0 || count[1] == 0.0)
-                continue;  // the median split decides such a node
-            double cost = 0.0;
-            for (int side = 0; side < 2; ++side)
+            if (count[0] > 0.0 && count[1] > 0.0)
             {
-                const Vec3 e = hi[side] - lo[side];
-                cost += (e.x() * e.y() + e.y() * e.z() + e.z() * e.x()) * count[side];
+                const double cost = splitCost(lo[0], hi[0], count[0], lo[1], hi[1], count[1]);
+                if (cost < bestCost)
+                {
+                    bestCost = cost;
+                    best = {axis};
+                }
             }
-            if (cost < bestCost)
+            if (!(highest > lowest))
+                continue;  // every centroid at one place along this axis
+            // Even steps: bins of centroids, then each plane between bins from both ends.
+            std::array<Vec3, kSplitBins> binLo, binHi;
+            std::array<double, kSplitBins> binCount{};
+            binLo.fill(Vec3::Constant(kInfinity));
+            binHi.fill(Vec3::Constant(-kInfinity));
+            const double perBin = kSplitBins / (highest - lowest);
+            for (std::size_t t = 0; t < sampled; ++t)
             {
-                bestCost = cost;
-                best = c == 0 ? fallback : frame.col(Eigen::Index(c - 1));
+                const int b = std::min(kSplitBins - 1, int((d.dot(local[3 * t + 2]) - lowest) * perBin));
+                binCount[std::size_t(b)] += 1.0;
+                binLo[std::size_t(b)] = binLo[std::size_t(b)].cwiseMin(local[3 * t]);
+                binHi[std::size_t(b)] = binHi[std::size_t(b)].cwiseMax(local[3 * t + 1]);
+            }
+            // Above each plane b (between bins b - 1 and b): box and count.
+            std::array<Vec3, kSplitBins> aboveLo, aboveHi;
+            std::array<double, kSplitBins> aboveCount{};
+            Vec3 runLo = Vec3::Constant(kInfinity), runHi = Vec3::Constant(-kInfinity);
+            double runCount = 0.0;
+            for (int b = kSplitBins - 1; b > 0; --b)
+            {
+                runLo = runLo.cwiseMin(binLo[std::size_t(b)]);
+                runHi = runHi.cwiseMax(binHi[std::size_t(b)]);
+                runCount += binCount[std::size_t(b)];
+                aboveLo[std::size_t(b)] = runLo;
+                aboveHi[std::size_t(b)] = runHi;
+                aboveCount[std::size_t(b)] = runCount;
+            }
+            runLo = Vec3::Constant(kInfinity);
+            runHi = Vec3::Constant(-kInfinity);
+            runCount = 0.0;
+            for (int b = 1; b < kSplitBins; ++b)
+            {
+                runLo = runLo.cwiseMin(binLo[std::size_t(b - 1)]);
+                runHi = runHi.cwiseMax(binHi[std::size_t(b - 1)]);
+                runCount += binCount[std::size_t(b - 1)];
+                if (runCount == 0.0 || aboveCount[std::size_t(b)] == 0.0)
+                    continue;
+                const double cost = splitCost(runLo, runHi, runCount, aboveLo[std::size_t(b)], aboveHi[std::size_t(b)],
+                                              aboveCount[std::size_t(b)]);
+                if (cost < bestCost)
+                {
+                    bestCost = cost;
+                    // Back to world units: the projections are three times the centroids'.
+                    best = {axis, true, (lowest + b / perBin) / 3.0};
+                }
             }
         }
         return best;
