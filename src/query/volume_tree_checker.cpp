@@ -418,10 +418,14 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
         ++boxTests;
         const Volume &robotVolume = placed.volume(p.robot);
         const Volume &envVolume = eNodes[p.environment].volume;
-        const double sphereGap =
-            (VolumeTraits<Volume>::center(robotVolume) - VolumeTraits<Volume>::center(envVolume)).norm() -
-            rNodes[p.robot].radius - eNodes[p.environment].radius - tolerance;
-        // A pair the bounding spheres already put beyond the best distance needs no volume bound.
+        const double centres =
+            (VolumeTraits<Volume>::center(robotVolume) - VolumeTraits<Volume>::center(envVolume)).squaredNorm();
+        const double reach = rNodes[p.robot].radius + eNodes[p.environment].radius + tolerance;
+        // A pair the bounding spheres already put beyond the best distance needs no volume bound
+        // (nor a square root: best itself is then a valid answer).
+        if (centres >= (best + reach) * (best + reach) && best + reach >= 0.0)
+            return best;
+        const double sphereGap = std::sqrt(centres) - reach;
         if (sphereGap >= best)
             return sphereGap;
         const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];

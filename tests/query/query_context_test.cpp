@@ -6,6 +6,7 @@
 
 #include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/query/query_context_pool.h"
+#include "hybridcd/query/traversal_stack.h"
 
 #include <gtest/gtest.h>
 
@@ -158,4 +159,39 @@ TEST(QueryContextPool, ManyThreadsBorrowAtOnce)
         t.join();
     for (int m : mismatches)
         EXPECT_EQ(m, 0);
+}
+
+TEST(NearestPairQueue, PopsInTheOrderOfASortAcrossInterleavedPushesAndPops)
+{
+    // Brute force: a sorted list. Ties, repeated values and an emptied queue included.
+    test::TestRandom rng(test::seeded(21));
+    std::uniform_int_distribution<int> value(0, 40), action(0, 2);
+    NearestPairQueue queue;
+    for (int round = 0; round < 200; ++round)
+    {
+        queue.clear();
+        std::multiset<double> reference;
+        for (int step = 0; step < 300; ++step)
+        {
+            if (action(rng) > 0 || reference.empty())
+            {
+                const double bound = 0.25 * value(rng);
+                queue.push({{std::uint32_t(step), std::uint32_t(round)}, bound});
+                reference.insert(bound);
+            }
+            else
+            {
+                ASSERT_EQ(queue.nearestBound(), *reference.begin());
+                ASSERT_EQ(queue.pop().bound, *reference.begin());
+                reference.erase(reference.begin());
+            }
+            ASSERT_EQ(queue.empty(), reference.empty());
+        }
+        while (!reference.empty())
+        {
+            ASSERT_EQ(queue.pop().bound, *reference.begin());
+            reference.erase(reference.begin());
+        }
+        EXPECT_TRUE(queue.empty());
+    }
 }

@@ -68,23 +68,50 @@ public:
     double nearestBound() const { return heap_.front().bound; }
     void push(const BoundedPair &p)
     {
+        // Sift up: a four-way heap is half as deep as a binary one, and its four children of a
+        // node share a cache line or two.
+        std::size_t i = heap_.size();
         heap_.push_back(p);
-        std::push_heap(heap_.begin(), heap_.end(), Farther{});
+        while (i > 0)
+        {
+            const std::size_t parent = (i - 1) / 4;
+            if (!(p.bound < heap_[parent].bound))
+                break;
+            heap_[i] = heap_[parent];
+            i = parent;
+        }
+        heap_[i] = p;
     }
     BoundedPair pop()
     {
-        std::pop_heap(heap_.begin(), heap_.end(), Farther{});
-        const BoundedPair p = heap_.back();
+        const BoundedPair top = heap_.front();
+        const BoundedPair last = heap_.back();
         heap_.pop_back();
-        return p;
+        const std::size_t n = heap_.size();
+        if (n == 0)
+            return top;
+        // Sift the last element down from the root.
+        std::size_t i = 0;
+        for (;;)
+        {
+            const std::size_t first = 4 * i + 1;
+            if (first >= n)
+                break;
+            std::size_t smallest = first;
+            const std::size_t end = std::min(first + 4, n);
+            for (std::size_t c = first + 1; c < end; ++c)
+                if (heap_[c].bound < heap_[smallest].bound)
+                    smallest = c;
+            if (!(heap_[smallest].bound < last.bound))
+                break;
+            heap_[i] = heap_[smallest];
+            i = smallest;
+        }
+        heap_[i] = last;
+        return top;
     }
 
 private:
-    /// A type rather than a function pointer, so that the heap's comparisons inline.
-    struct Farther
-    {
-        bool operator()(const BoundedPair &x, const BoundedPair &y) const { return x.bound > y.bound; }
-    };
     std::vector<BoundedPair> heap_;
 };
 }  // namespace hcd
