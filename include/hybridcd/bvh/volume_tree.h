@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -265,9 +266,13 @@ private:
             binLo.fill(Vec3::Constant(kInfinity));
             binHi.fill(Vec3::Constant(-kInfinity));
             const double perBin = kSplitBins / (highest - lowest);
+            if (!std::isfinite(perBin))
+                continue;  // a spread too small (or too large) to divide: the planes above decide
             for (std::size_t t = 0; t < sampled; ++t)
             {
-                const int b = std::min(kSplitBins - 1, int((d.dot(local[3 * t + 2]) - lowest) * perBin));
+                // Clamped before the conversion, so that no value (NaN included) leaves the bins.
+                const double at = (d.dot(local[3 * t + 2]) - lowest) * perBin;
+                const int b = at >= kSplitBins - 1 ? kSplitBins - 1 : at > 0.0 ? int(at) : 0;
                 binCount[std::size_t(b)] += 1.0;
                 binLo[std::size_t(b)] = binLo[std::size_t(b)].cwiseMin(local[3 * t]);
                 binHi[std::size_t(b)] = binHi[std::size_t(b)].cwiseMax(local[3 * t + 1]);
