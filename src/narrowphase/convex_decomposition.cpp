@@ -108,9 +108,11 @@ int concavitySamplesPerEdge(const ConvexPiece &hull)
     // Facet samples at least as dense as approximationBound's interior grid (eight steps across
     // the box's longest side): the box's diagonal over that spacing, 8 to 14.
     const double longest = (hi - lo).maxCoeff();
-    if (!(longest > 0.0))
+    // Divided before the norm, so that huge extents cannot overflow; NaN for an unbounded hull.
+    const double steps = 8.0 * ((hi - lo) / longest).norm();
+    if (!(longest > 0.0) || !(steps >= 4.0))
         return 4;
-    return std::clamp(int(std::ceil(8.0 * (hi - lo).norm() / longest)), 4, 32);
+    return steps >= 32.0 ? 32 : int(std::ceil(steps));
 }
 
 namespace

@@ -2,7 +2,7 @@
 // Cutting a mesh into convex pieces for the LP narrow phase.
 //
 // The pieces are the leaves of a volume tree built with at most K triangles per leaf: the top-down
-// split already groups nearby triangles into children of small surface, so each leaf's triangles form
+// split already groups nearby triangles, so each leaf's triangles form
 // a compact cluster, and its convex hull (Qhull) is the piece. Every triangle lies in the piece of
 // its leaf by construction. Each piece records its concavity: how far its hull surface stands out
 // from the triangles it covers (0 when the triangles are the hull, e.g. a single triangle or a
