@@ -95,28 +95,34 @@ double measureConcavity(const ConvexPiece &hull, const TriangleMesh &mesh, const
     return worst;
 }
 
-int concavitySamplesPerEdge(const ConvexPiece &hull)
+namespace
 {
-    if (hull.vertices.empty())
-        return 4;
-    Vec3 lo = hull.vertices.front(), hi = lo;
+// approximationBound's interior grid: this many steps across the hull box's longest side.
+constexpr int kGridSteps = 8;
+
+// The hull's axis-aligned box (both corners at the origin for a hull without vertices).
+void hullBox(const ConvexPiece &hull, Vec3 &lo, Vec3 &hi)
+{
+    lo = hi = hull.vertices.empty() ? Vec3::Zero() : hull.vertices.front();
     for (const Vec3 &v : hull.vertices)
     {
         lo = lo.cwiseMin(v);
         hi = hi.cwiseMax(v);
     }
-    // Facet samples at least as dense as approximationBound's interior grid (eight steps across
-    // the box's longest side): the box's diagonal over that spacing, 8 to 14.
-    const double longest = (hi - lo).maxCoeff();
+}
+
+// concavitySamplesPerEdge for a hull box of this extent: facet samples at least as dense as the
+// interior grid, the box's diagonal over the grid's spacing (8 to 14).
+int samplesPerEdgeFor(const Vec3 &extent)
+{
+    const double longest = extent.maxCoeff();
     // Divided before the norm, so that huge extents cannot overflow; NaN for an unbounded hull.
-    const double steps = 8.0 * ((hi - lo) / longest).norm();
+    const double steps = kGridSteps * (extent / longest).norm();
     if (!(longest > 0.0) || !(steps >= 4.0))
         return 4;
     return steps >= 32.0 ? 32 : int(std::ceil(steps));
 }
 
-namespace
-{
 // A piece's two distances to its triangles: the largest found on its surface (facet samples at least
 // as dense as the interior grid of approximationBound) and approximationBound itself.
 struct PieceDistances
@@ -130,23 +136,18 @@ PieceDistances measurePiece(const ConvexPiece &hull, const TriangleMesh &mesh,
 {
     if (triangles.size() == 1)
         return {};  // the hull is the triangle itself
-    Vec3 lo = hull.vertices.front(), hi = lo;
-    for (const Vec3 &v : hull.vertices)
-    {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-    }
-    constexpr int kSteps = 8;
-    const double spacing = (hi - lo).maxCoeff() / kSteps;
+    Vec3 lo, hi;
+    hullBox(hull, lo, hi);
+    const double spacing = (hi - lo).maxCoeff() / kGridSteps;
     if (!(spacing > 0.0))
         return {};
     PieceDistances d;
-    d.surface = measureConcavity(hull, mesh, triangles, concavitySamplesPerEdge(hull));
+    d.surface = measureConcavity(hull, mesh, triangles, samplesPerEdgeFor(hi - lo));
     double worst = d.surface;
     const double slack = 1e-9 * (1.0 + hull.magnitude());
-    for (int i = 0; i <= kSteps; ++i)
-        for (int j = 0; j <= kSteps; ++j)
-            for (int k = 0; k <= kSteps; ++k)
+    for (int i = 0; i <= kGridSteps; ++i)
+        for (int j = 0; j <= kGridSteps; ++j)
+            for (int k = 0; k <= kGridSteps; ++k)
             {
                 const Vec3 p = lo + spacing * Vec3(i, j, k);
                 if (hull.maxViolation(p) <= slack)
@@ -156,6 +157,13 @@ PieceDistances measurePiece(const ConvexPiece &hull, const TriangleMesh &mesh,
     return d;
 }
 }  // namespace
+
+int concavitySamplesPerEdge(const ConvexPiece &hull)
+{
+    Vec3 lo, hi;
+    hullBox(hull, lo, hi);
+    return samplesPerEdgeFor(hi - lo);
+}
 
 double approximationBound(const ConvexPiece &hull, const TriangleMesh &mesh,
                           const std::vector<std::uint32_t> &triangles)

@@ -186,13 +186,11 @@ private:
         double cut = 0.0;
     };
 
-    // Children's box surface area (half of it) times their triangle counts, boxes in frame coordinates.
-    static double splitCost(const Vec3 &lo0, const Vec3 &hi0, double count0, const Vec3 &lo1, const Vec3 &hi1,
-                            double count1)
+    // A child's part of a split's cost: its box's surface area (half of it) times its triangle count.
+    static double childCost(const Vec3 &lo, const Vec3 &hi, double count)
     {
-        const Vec3 e0 = hi0 - lo0, e1 = hi1 - lo1;
-        return (e0.x() * e0.y() + e0.y() * e0.z() + e0.z() * e0.x()) * count0 +
-               (e1.x() * e1.y() + e1.y() * e1.z() + e1.z() * e1.x()) * count1;
+        const Vec3 e = hi - lo;
+        return (e.x() * e.y() + e.y() * e.z() + e.z() * e.x()) * count;
     }
 
     // The surface area heuristic (a pair test reaches a child about as often as its surface is met,
@@ -253,7 +251,7 @@ private:
             }
             if (count[0] > 0.0 && count[1] > 0.0)
             {
-                const double cost = splitCost(lo[0], hi[0], count[0], lo[1], hi[1], count[1]);
+                const double cost = childCost(lo[0], hi[0], count[0]) + childCost(lo[1], hi[1], count[1]);
                 if (cost < bestCost)
                 {
                     bestCost = cost;
@@ -303,8 +301,9 @@ private:
                 runCount += binCount[std::size_t(b - 1)];
                 if (runCount == 0.0 || aboveCount[std::size_t(b)] == 0.0)
                     continue;
-                const double cost = splitCost(runLo, runHi, runCount, aboveLo[std::size_t(b)], aboveHi[std::size_t(b)],
-                                              aboveCount[std::size_t(b)]);
+                const double cost =
+                    childCost(runLo, runHi, runCount) +
+                    childCost(aboveLo[std::size_t(b)], aboveHi[std::size_t(b)], aboveCount[std::size_t(b)]);
                 if (cost < bestCost)
                 {
                     bestCost = cost;
