@@ -21,10 +21,51 @@ constexpr double kSqrt3 = 1.7320508075688772;
 /// point may be `queryOffset` cells off its cell's centre, the seed's points half a cell diagonal.
 int unitsBelow(double squared, double queryOffset, int unitsPerCell, int saturate)
 {
-    if (squared >= kNoSeedSquaredDistance)
-        return saturate;
     const double units = std::floor(unitsPerCell * (std::sqrt(squared) - queryOffset - 0.5 * kSqrt3) - 1e-9);
     return units <= 0.0 ? 0 : int(std::min<double>(units, saturate));
+}
+/// The squared distance in the plane z = 0 from p to the triangle abc (all at z = 0): zero inside,
+/// else the nearest of its three edges. A triangle seen edge on (an upright face's shadow) is its
+/// edges alone.
+double squaredShadowDistance(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    const auto cross = [](double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; };
+    const double ab = cross(b.x() - a.x(), b.y() - a.y(), p.x() - a.x(), p.y() - a.y());
+    const double bc = cross(c.x() - b.x(), c.y() - b.y(), p.x() - b.x(), p.y() - b.y());
+    const double ca = cross(a.x() - c.x(), a.y() - c.y(), p.x() - c.x(), p.y() - c.y());
+    if ((ab > 0.0 && bc > 0.0 && ca > 0.0) || (ab < 0.0 && bc < 0.0 && ca < 0.0))
+        return 0.0;
+    const auto toSegment = [&](const Vec3 &u, const Vec3 &v) {
+        const double ex = v.x() - u.x(), ey = v.y() - u.y(), px = p.x() - u.x(), py = p.y() - u.y();
+        const double length = ex * ex + ey * ey;
+        const double t = length > 0.0 ? std::clamp((px * ex + py * ey) / length, 0.0, 1.0) : 0.0;
+        const double dx = px - t * ex, dy = py - t * ey;
+        return dx * dx + dy * dy;
+    };
+    return std::min({toSegment(a, b), toSegment(b, c), toSegment(c, a)});
+}
+/// The x extent [xl, xr] of the part of triangle abc (its x and y) with y in [yLow, yHigh]; false
+/// when no part of it is. The part is convex: its extremes are corners in the strip or crossings
+/// of the edges with the strip's two lines.
+bool shadowExtentInStrip(const Vec3 &a, const Vec3 &b, const Vec3 &c, double yLow, double yHigh, double &xl, double &xr)
+{
+    xl = std::numeric_limits<double>::infinity();
+    xr = -xl;
+    const auto take = [&](double x) {
+        xl = std::min(xl, x);
+        xr = std::max(xr, x);
+    };
+    const Vec3 *corners[3] = {&a, &b, &c};
+    for (int k = 0; k < 3; ++k)
+    {
+        const Vec3 &u = *corners[k], &v = *corners[(k + 1) % 3];
+        if (u.y() >= yLow && u.y() <= yHigh)
+            take(u.x());
+        for (double line : {yLow, yHigh})
+            if ((u.y() < line) != (v.y() < line))
+                take(u.x() + (v.x() - u.x()) * ((line - u.y()) / (v.y() - u.y())));
+    }
+    return xl <= xr;
 }
 }  // namespace
 
@@ -94,38 +135,66 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
         const double reach = 0.5 * h * normalSum + 1e-9 * normalSum * (magnitude + h);
         for (int z = z0; z <= z1; ++z)
             for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x)
+            {
+                int first = x0, last = x1;
+                if (planar)
                 {
+                    // Only centres within planarReach of the part of the shadow in the strip
+                    // |y' - y| <= planarReach can be that near: that part's x extent, widened by
+                    // the reach and a cell either side (rounding), bounds the row's cells.
+                    const double cy = origin_.y() + h * (y + 0.5);
+                    double xl, xr;
+                    if (!shadowExtentInStrip(a, b, c, cy - planarReach, cy + planarReach, xl, xr))
+                        continue;
+                    const double u0 = (xl - planarReach - origin_.x()) * inverseCellSize_ - 0.5;
+                    const double u1 = (xr + planarReach - origin_.x()) * inverseCellSize_ - 0.5;
+                    if (u0 > double(x1) + 1.0 || u1 < double(x0) - 1.0)
+                        continue;
+                    first = std::max(x0, int(std::floor(std::max(u0, double(x0) - 1.0))) - 1);
+                    last = std::min(x1, int(std::ceil(std::min(u1, double(x1) + 1.0))) + 1);
+                }
+                for (int x = first; x <= last; ++x)
+                {
+                    const std::size_t i = cellIndex(x, y, z);
+                    if (occupiedCell[i])
+                        continue;  // already marked, with the first triangle that did
                     const Vec3 centre = origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5);
-                    if (planar ? (closestPointOnTriangle(centre, a, b, c) - centre).norm() <= planarReach
+                    if (planar ? squaredShadowDistance(centre, a, b, c) <= planarReach * planarReach
                                : std::abs(normal.dot(centre - a)) <= reach)
                     {
-                        const std::size_t i = cellIndex(x, y, z);
                         occupiedCell[i] = 1;
-                        if (settings.keepTriangles && firstTriangle[i] == ~0u)
+                        if (settings.keepTriangles)
                             firstTriangle[i] = std::uint32_t(t);
                     }
                 }
+            }
     }
     occupied_ = std::size_t(std::count(occupiedCell.begin(), occupiedCell.end(), std::uint8_t(1)));
     if (settings.keepTriangles)
     {
+        // 64 cells per word: the word's mask, then its occupied cells' triangles in index order.
         occupiedMask_.assign((cellCount + 63) / 64, 0);
         occupiedBefore_.assign(occupiedMask_.size(), 0);
+        occupiedTriangle_.reserve(occupied_);
         std::uint32_t count = 0;
-        for (std::size_t i = 0; i < cellCount; ++i)
+        for (std::size_t w = 0; w < occupiedMask_.size(); ++w)
         {
-            if (i % 64 == 0)
-                occupiedBefore_[i / 64] = count;
-            if (occupiedCell[i])
-            {
-                occupiedMask_[i / 64] |= std::uint64_t(1) << (i % 64);
-                occupiedTriangle_.push_back(firstTriangle[i]);
-                ++count;
-            }
+            const std::size_t base = w * 64, cells = std::min<std::size_t>(64, cellCount - base);
+            std::uint64_t mask = 0;
+            for (std::size_t k = 0; k < cells; ++k)
+                mask |= std::uint64_t(occupiedCell[base + k] != 0) << k;
+            occupiedMask_[w] = mask;
+            occupiedBefore_[w] = count;
+            count += std::uint32_t(__builtin_popcountll(mask));
+            for (; mask != 0; mask &= mask - 1)
+                occupiedTriangle_.push_back(firstTriangle[base + std::size_t(__builtin_ctzll(mask))]);
         }
     }
-    const std::vector<double> squared = squaredDistanceTransform(occupiedCell, nx_, ny_, nz_);
+    // Half cells of clearance per squared distance (an integer): from 65^2 cells on the codes
+    // saturate, so the transform stops there and a table of the smaller ones spares a square root
+    // per cell.
+    constexpr std::uint16_t kTabled = 65 * 65;
+    const std::vector<std::uint16_t> squared = squaredDistanceTransform(occupiedCell, nx_, ny_, nz_, kTabled);
 
     // Sides: one exact point-in-solid test per face-connected region of free cells.
     std::vector<std::uint8_t> insideCell(cellCount, 0);
@@ -148,16 +217,13 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
         }
     }
     hasMarkers_ = !markers.empty() && !planar;
-    // Half cells of clearance per squared distance (an integer): from 65^2 cells on the codes
-    // saturate, so a table of the smaller ones spares a square root per cell.
-    constexpr std::size_t kTabled = 65 * 65;
     std::vector<std::uint8_t> halfCells(kTabled);
     for (std::size_t k = 0; k < kTabled; ++k)
         halfCells[k] = std::uint8_t(unitsBelow(double(k), 0.0, 2, 127));
     cellBytes_.resize(cellCount);
     for (std::size_t i = 0; i < cellCount; ++i)
     {
-        const int units = squared[i] < double(kTabled) ? halfCells[std::size_t(squared[i])] : 127;
+        const int units = squared[i] < kTabled ? halfCells[squared[i]] : 127;
         cellBytes_[i] = occupiedCell[i] ? 0
                         : insideCell[i] ? std::uint8_t(128 + units)
                                         : std::uint8_t(1 + std::min(units, 126));
@@ -179,7 +245,14 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                     for (int x = x0; x <= x1; ++x)
                         markerCell[cellIndex(x, y, z)] = 1;
         }
-        const std::vector<double> markerSquared = squaredDistanceTransform(markerCell, nx_, ny_, nz_);
+        // Whole cells saturate at 255, i.e. from sqrt(squared) = 255 + 1 + sqrt(3) / 2 on; and
+        // from markerReach plus four cells on, whose bound (a capped square gives a smaller one:
+        // the units grow with it) is still a cell beyond the reach.
+        std::uint32_t markerCap = 65912;
+        const double reachCells = std::max(0.0, settings.markerReach) * inverseCellSize_ + 4.0;
+        if (reachCells < 257.0)
+            markerCap = std::min(markerCap, std::uint32_t(std::ceil(reachCells * reachCells)));
+        const std::vector<std::uint32_t> markerSquared = squaredDistanceTransform(markerCell, nx_, ny_, nz_, markerCap);
         markerBytes_.resize(cellCount);
         for (std::size_t i = 0; i < cellCount; ++i)
             markerBytes_[i] = std::uint8_t(unitsBelow(markerSquared[i], 0.5 * kSqrt3, 1, 255));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 
@@ -10,102 +11,124 @@ namespace hcd
 {
 namespace
 {
-/// Along each row of x: the squared distance to the nearest seed of the row, by one scan from each
-/// end (kNoSeedSquaredDistance in a row without seeds).
-void nearestSeedAlongX(const std::vector<std::uint8_t> &seeds, int nx, std::size_t rows, std::vector<double> &out)
+/// The smallest distance r (in cells) with r * r >= cap: gaps of r or more saturate.
+std::int64_t saturatingGap(std::int64_t cap)
 {
+    std::int64_t r = std::int64_t(std::sqrt(double(cap)));
+    while (r * r < cap)
+        ++r;
+    while (r > 0 && (r - 1) * (r - 1) >= cap)
+        --r;
+    return r;
+}
+
+/// Along each row of x: the squared distance to the nearest seed of the row, by one scan from each
+/// end, or `cap` (also in a row without seeds).
+template <class Value>
+void nearestSeedAlongX(const std::vector<std::uint8_t> &seeds, int nx, std::size_t rows, Value cap, Value *out)
+{
+    const std::int64_t reach = saturatingGap(cap);
     for (std::size_t row = 0; row < rows; ++row)
     {
         const std::uint8_t *s = seeds.data() + row * std::size_t(nx);
-        double *d = out.data() + row * std::size_t(nx);
-        int last = -1;  // the latest seed at or before q
+        Value *d = out + row * std::size_t(nx);
+        std::int64_t last = -reach;  // the latest seed at or before q, or one out of reach
         for (int q = 0; q < nx; ++q)
         {
             if (s[q])
                 last = q;
-            d[q] = last < 0 ? kNoSeedSquaredDistance : double(q - last) * double(q - last);
+            const std::int64_t gap = q - last;
+            d[q] = gap < reach ? Value(gap * gap) : cap;
         }
-        int next = -1;  // the earliest seed at or after q
+        std::int64_t next = std::int64_t(nx) - 1 + reach;  // the earliest seed at or after q
         for (int q = nx - 1; q >= 0; --q)
         {
             if (s[q])
                 next = q;
-            if (next >= 0)
-                d[q] = std::min(d[q], double(next - q) * double(next - q));
+            const std::int64_t gap = next - q;
+            if (gap < reach)
+                d[q] = std::min(d[q], Value(gap * gap));
         }
     }
 }
 
 /// Felzenszwalb and Huttenlocher's exact 1D squared distance transform (lower envelope of
-/// parabolas) of f[0, n), with only the entries below kNoSeedSquaredDistance as parabolas (the
-/// others can never be lowest). On integer inputs the envelope breakpoints are rationals with
-/// denominators below 2n, so double rounding never changes which parabola is lowest at an integer.
-void lowerEnvelope(const double *f, int n, double *d, int *v, double *z)
+/// parabolas) of f[0, n), in place, capped at `cap`, with only the entries below the cap as
+/// parabolas (the others can never bring a value below it). The breakpoint of the parabolas at v
+/// and q is (q + v) / 2 + (f[q] - f[v]) / (2 (q - v)): a rational with a denominator below 2n,
+/// whose double never lands on the wrong side of an integer. Scratch: v, h (n each) and z (n + 1).
+void lowerEnvelope(std::int64_t *f, int n, std::int64_t cap, int *v, std::int64_t *h, double *z)
 {
     int k = -1;
     for (int q = 0; q < n; ++q)
     {
-        if (!(f[q] < kNoSeedSquaredDistance))
+        if (f[q] >= cap)
             continue;
         if (k < 0)
         {
             k = 0;
             v[0] = q;
+            h[0] = f[q];
             z[0] = -std::numeric_limits<double>::infinity();
             z[1] = std::numeric_limits<double>::infinity();
             continue;
         }
-        const double lifted = f[q] + double(q) * q;
-        double s = (lifted - (f[v[k]] + double(v[k]) * v[k])) / (2.0 * q - 2.0 * v[k]);
+        const auto breakpoint = [&](int at) {
+            return 0.5 * double(q + at) + double(f[q] - f[at]) / (2.0 * double(q - at));
+        };
+        double s = breakpoint(v[k]);
         while (s <= z[k])  // z[0] is -infinity: k stays at least 0
         {
             --k;
-            s = (lifted - (f[v[k]] + double(v[k]) * v[k])) / (2.0 * q - 2.0 * v[k]);
+            s = breakpoint(v[k]);
         }
         ++k;
         v[k] = q;
+        h[k] = f[q];
         z[k] = s;
         z[k + 1] = std::numeric_limits<double>::infinity();
     }
     if (k < 0)
-    {
-        std::fill(d, d + n, kNoSeedSquaredDistance);
-        return;
-    }
+        return;  // every entry is already at the cap
+    const int last = k;
     k = 0;
     for (int q = 0; q < n; ++q)
     {
-        while (z[k + 1] < q)
+        while (k < last && z[k + 1] < q)
             ++k;
-        d[q] = double(q - v[k]) * (q - v[k]) + f[v[k]];
+        const std::int64_t gap = q - v[k];
+        // The gap alone may exceed the cap (and 2^31 squared): no overflow past it.
+        f[q] = std::abs(gap) >= 3037000499 ? cap : std::min(cap, gap * gap + h[k]);
     }
 }
 }  // namespace
 
-std::vector<double> squaredDistanceTransform(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz)
+template <class Value>
+std::vector<Value> squaredDistanceTransform(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz, Value cap)
 {
     const std::size_t plane = std::size_t(nx) * ny, count = plane * nz;
-    std::vector<double> grid(count);
+    std::vector<Value> grid(count);
     if (count == 0)
         return grid;
-    nearestSeedAlongX(seeds, nx, std::size_t(ny) * nz, grid);
+    nearestSeedAlongX(seeds, nx, std::size_t(ny) * nz, cap, grid.data());
     const int longest = std::max({nx, ny, nz});
-    std::vector<double> f(longest), d(longest), z(longest + 1);
+    std::vector<std::int64_t> f(longest), h(longest);
+    std::vector<double> z(longest + 1);
     std::vector<int> v(longest);
     // One column along y or z at a time; consecutive columns are neighbours in x, so that the cache
-    // lines one column reads serve the next seven.
+    // lines one column reads serve the next ones.
     const auto column = [&](std::size_t first, std::size_t stride, int n) {
         bool reached = false;
         for (int q = 0; q < n; ++q)
         {
             f[q] = grid[first + std::size_t(q) * stride];
-            reached = reached || f[q] < kNoSeedSquaredDistance;
+            reached = reached || f[q] < cap;
         }
         if (!reached)
-            return;  // nothing along this column: it stays unreached
-        lowerEnvelope(f.data(), n, d.data(), v.data(), z.data());
+            return;  // nothing along this column: it stays at the cap
+        lowerEnvelope(f.data(), n, cap, v.data(), h.data(), z.data());
         for (int q = 0; q < n; ++q)
-            grid[first + std::size_t(q) * stride] = d[q];
+            grid[first + std::size_t(q) * stride] = Value(f[q]);
     };
     if (ny > 1)
         for (int zi = 0; zi < nz; ++zi)
@@ -117,6 +140,11 @@ std::vector<double> squaredDistanceTransform(const std::vector<std::uint8_t> &se
                 column(std::size_t(y) * nx + std::size_t(x), plane, nz);
     return grid;
 }
+
+template std::vector<std::uint16_t> squaredDistanceTransform(const std::vector<std::uint8_t> &, int, int, int,
+                                                             std::uint16_t);
+template std::vector<std::uint32_t> squaredDistanceTransform(const std::vector<std::uint8_t> &, int, int, int,
+                                                             std::uint32_t);
 
 std::vector<double> squaredDistanceTransformBruteForce(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz)
 {

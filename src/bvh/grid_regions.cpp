@@ -1,22 +1,48 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/bvh/grid_regions.h"
 
+#include <algorithm>
+
 #include <cstddef>
 
 namespace hcd
 {
 std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied, int nx, int ny, int nz)
 {
-    const std::size_t plane = std::size_t(nx) * ny;
-    std::vector<std::uint32_t> parent(plane * nz);
-    // Every parent precedes its child (parent[i] <= i): a root found is the region's smallest index.
-    const auto find = [&](std::uint32_t i) {
-        while (parent[i] != i)
+    const std::size_t plane = std::size_t(nx) * ny, count = plane * nz, rows = std::size_t(ny) * nz;
+    // Runs of free cells along x, row by row: union-find over runs rather than cells (a row of a
+    // free room is one run). runFirst holds each run's first cell, runEnd one past its last.
+    std::vector<std::uint32_t> runFirst, runEnd, rowRuns(rows + 1, 0);
+    for (std::size_t row = 0; row < rows; ++row)
+    {
+        rowRuns[row] = std::uint32_t(runFirst.size());
+        const std::uint8_t *o = occupied.data() + row * std::size_t(nx);
+        for (int x = 0; x < nx;)
         {
-            parent[i] = parent[parent[i]];  // path halving
-            i = parent[i];
+            if (o[x])
+            {
+                ++x;
+                continue;
+            }
+            const int first = x;
+            while (x < nx && !o[x])
+                ++x;
+            runFirst.push_back(std::uint32_t(row * std::size_t(nx) + std::size_t(first)));
+            runEnd.push_back(std::uint32_t(row * std::size_t(nx) + std::size_t(x)));
         }
-        return i;
+    }
+    rowRuns[rows] = std::uint32_t(runFirst.size());
+    std::vector<std::uint32_t> parent(runFirst.size());
+    for (std::uint32_t r = 0; r < parent.size(); ++r)
+        parent[r] = r;
+    // Every parent precedes its child (parent[r] <= r): a root found is the region's first run.
+    const auto find = [&](std::uint32_t r) {
+        while (parent[r] != r)
+        {
+            parent[r] = parent[parent[r]];  // path halving
+            r = parent[r];
+        }
+        return r;
     };
     const auto unite = [&](std::uint32_t a, std::uint32_t b) {
         a = find(a);
@@ -26,25 +52,39 @@ std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied
         else if (b < a)
             parent[a] = b;
     };
-    std::uint32_t i = 0;
-    for (int z = 0; z < nz; ++z)
-        for (int y = 0; y < ny; ++y)
-            for (int x = 0; x < nx; ++x, ++i)
-            {
-                parent[i] = i;
-                if (occupied[i])
-                    continue;
-                if (x > 0 && !occupied[i - 1])
-                    parent[i] = parent[i - 1];  // parent[i - 1] < i keeps parent[i] <= i
-                if (y > 0 && !occupied[i - nx])
-                    unite(i - std::uint32_t(nx), i);
-                if (z > 0 && !occupied[i - plane])
-                    unite(i - std::uint32_t(plane), i);
-            }
-    // In index order every parent is final before its children: one pass flattens every chain.
-    for (std::uint32_t j = 0; j < parent.size(); ++j)
-        parent[j] = parent[parent[j]];
-    return parent;
+    // Runs of two rows that are face neighbours (one apart in y, or in z) meet where their x
+    // ranges overlap; both lists are sorted along x, so one merge finds every overlap.
+    const auto uniteOverlaps = [&](std::size_t row, std::size_t neighbourRow, std::uint32_t offset) {
+        std::uint32_t a = rowRuns[row], b = rowRuns[neighbourRow];
+        const std::uint32_t aEnd = rowRuns[row + 1], bEnd = rowRuns[neighbourRow + 1];
+        while (a < aEnd && b < bEnd)
+        {
+            const std::uint32_t aFirst = runFirst[a] - offset, aLast = runEnd[a] - offset;  // in b's row
+            if (aFirst < runEnd[b] && runFirst[b] < aLast)
+                unite(b, a);
+            if (aLast <= runEnd[b])
+                ++a;
+            else
+                ++b;
+        }
+    };
+    for (std::size_t row = 0; row < rows; ++row)
+    {
+        const std::size_t y = row % std::size_t(ny);
+        if (y > 0)
+            uniteOverlaps(row, row - 1, std::uint32_t(nx));
+        if (row >= std::size_t(ny))
+            uniteOverlaps(row, row - std::size_t(ny), std::uint32_t(plane));
+    }
+    std::vector<std::uint32_t> region(count);
+    for (std::uint32_t i = 0; i < count; ++i)
+        region[i] = i;  // occupied cells keep their own index
+    for (std::uint32_t r = 0; r < parent.size(); ++r)
+    {
+        const std::uint32_t label = runFirst[find(r)];
+        std::fill(region.begin() + runFirst[r], region.begin() + runEnd[r], label);
+    }
+    return region;
 }
 
 std::vector<std::uint32_t> freeRegionsByFloodFill(const std::vector<std::uint8_t> &occupied, int nx, int ny, int nz)

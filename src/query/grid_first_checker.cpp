@@ -50,6 +50,7 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     robot_ = robot.mesh;
     environment_ = environment.mesh;
     gridSettings.keepTriangles = true;
+    gridSettings.markerReach = robotReach_;  // markers only matter within the robot's reach
     indexLeafTriangles();
     std::optional<SolidQuery> robotSolids;  // with solid semantics, the robot's closed components
     if (solid_)

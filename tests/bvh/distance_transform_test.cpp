@@ -1,26 +1,41 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The clearance grid's distance transform against brute force (every cell against every seed),
-// bit for bit, on random grids of every shape: flat, one cell thick, long and thin, without seeds,
-// with one seed and with seeds almost everywhere.
+// bit for bit and capped at several heights, on random grids of every shape: flat, one cell thick,
+// long and thin, without seeds, with one seed and with seeds almost everywhere.
 #include "support/test_support.h"
 
 #include "hybridcd/bvh/distance_transform.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <random>
 
 using namespace hcd;
 
 namespace
 {
-void expectSameAsBruteForce(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz)
+/// The capped transform in `Value` against min(brute force, cap), cell by cell.
+template <class Value>
+void expectCappedBruteForce(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz,
+                            const std::vector<double> &reference, Value cap)
 {
-    const std::vector<double> fast = squaredDistanceTransform(seeds, nx, ny, nz);
-    const std::vector<double> reference = squaredDistanceTransformBruteForce(seeds, nx, ny, nz);
+    const std::vector<Value> fast = squaredDistanceTransform(seeds, nx, ny, nz, cap);
     ASSERT_EQ(fast.size(), reference.size());
     for (std::size_t i = 0; i < fast.size(); ++i)
-        ASSERT_EQ(fast[i], reference[i]) << "cell " << i << " of " << nx << "x" << ny << "x" << nz;
+        ASSERT_EQ(double(fast[i]), std::min(reference[i], double(cap)))
+            << "cell " << i << " of " << nx << "x" << ny << "x" << nz << ", cap " << cap;
+}
+
+/// Uncapped in 32 bits, and capped where the cap cuts some rows short and where it cuts almost all.
+void expectSameAsBruteForce(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz)
+{
+    const std::vector<double> reference = squaredDistanceTransformBruteForce(seeds, nx, ny, nz);
+    expectCappedBruteForce<std::uint32_t>(seeds, nx, ny, nz, reference, std::numeric_limits<std::uint32_t>::max());
+    expectCappedBruteForce<std::uint16_t>(seeds, nx, ny, nz, reference, std::numeric_limits<std::uint16_t>::max());
+    for (std::uint16_t cap : {std::uint16_t(1), std::uint16_t(2), std::uint16_t(17), std::uint16_t(50)})
+        expectCappedBruteForce<std::uint16_t>(seeds, nx, ny, nz, reference, cap);
 }
 }  // namespace
 
@@ -58,9 +73,10 @@ TEST(DistanceTransform, OneSeedInLongFlatAndThinGrids)
     }
 }
 
-TEST(DistanceTransform, NoSeedLeavesEveryCellUnreached)
+TEST(DistanceTransform, NoSeedLeavesEveryCellAtTheCap)
 {
-    const std::vector<double> d = squaredDistanceTransform(std::vector<std::uint8_t>(6 * 5 * 4, 0), 6, 5, 4);
-    for (double v : d)
-        EXPECT_EQ(v, kNoSeedSquaredDistance);
+    const std::vector<std::uint32_t> d =
+        squaredDistanceTransform(std::vector<std::uint8_t>(6 * 5 * 4, 0), 6, 5, 4, std::uint32_t(1000));
+    for (std::uint32_t v : d)
+        EXPECT_EQ(v, 1000u);
 }

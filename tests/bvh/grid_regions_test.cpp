@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The clearance grid's free regions (union-find in index order) against a flood fill from each
-// region's first cell, on random grids and on shapes whose regions merge late: a spiral, combs and
-// a U open only at the far end.
+// The clearance grid's free regions (union-find over runs of free cells) against a flood fill from
+// each region's first cell, on random grids and on shapes whose regions merge late: a spiral, combs,
+// a U open only at the far end, and runs that meet only corner to corner.
 #include "support/test_support.h"
 
 #include "hybridcd/bvh/grid_regions.h"
@@ -87,6 +87,15 @@ TEST(GridRegions, SpiralCombsAndLateJoins)
         u[std::size_t(y) * 9 + 4] = 1;
     expectSameAsFloodFill(u, 9, 9, 1);
     EXPECT_EQ(regionCount(u, freeRegions(u, 9, 9, 1)), 1u);
+    // Free cells on a diagonal, in y and in z: runs that touch only at corners stay apart.
+    std::vector<std::uint8_t> stairs(std::size_t(7) * 7 * 7, 1);
+    for (int k = 0; k < 7; ++k)
+    {
+        stairs[std::size_t(k) * 7 + k] = 0;                  // z = 0: (k, k)
+        stairs[(std::size_t(k) * 7 + 3) * 7 + (6 - k)] = 0;  // y = 3: x and z on a diagonal
+    }
+    expectSameAsFloodFill(stairs, 7, 7, 7);
+    EXPECT_EQ(regionCount(stairs, freeRegions(stairs, 7, 7, 7)), 14u);  // every free cell alone
     // Every cell occupied, and none.
     expectSameAsFloodFill(std::vector<std::uint8_t>(60, 1), 3, 4, 5);
     expectSameAsFloodFill(std::vector<std::uint8_t>(60, 0), 3, 4, 5);

@@ -164,8 +164,12 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         // Three markers: kept as points and measured to directly.
         const std::vector<Vec3> fewMarkers(markers.begin(), markers.begin() + 3);
         const ClearanceGrid fewMarkerGrid(*mesh, &solids, fewMarkers, settings);
+        // Marker distances wanted only up to `reach`: the transform stops a few cells beyond it.
+        ClearanceGridSettings reachSettings = settings;
+        reachSettings.markerReach = 0.2 * scale;
+        const ClearanceGrid reachGrid(*mesh, &solids, markers, reachSettings);
         ASSERT_GT(markers.size(), 8u);
-        int fewMarkersNear = 0;
+        int fewMarkersNear = 0, beyondReach = 0;
         std::uniform_real_distribution<double> u(-1.6, 1.6), far(-4.0, 4.0);
         // A fixed count (cheap even under the sanitizers): the "not vacuous" checks below need it.
         // One point in four may lie beyond the grid (which ends 0.3 past the mesh's box); another
@@ -193,6 +197,16 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
             // Not vacuous: within rounding of the distance itself.
             ASSERT_GE(few.markerClearance, fewMarkerDistance - 1e-6 * scale);
             fewMarkersNear += fewMarkerDistance < 0.5 * scale;
+            // Capped at the reach: still a lower bound, and still beyond the reach where the
+            // markers are more than five cells farther.
+            const ClearanceSample capped = reachGrid.at(p);
+            ASSERT_LE(capped.markerClearance, markerDistance);
+            if (markerDistance > reachSettings.markerReach + 5.0 * reachGrid.cellSize())
+            {
+                ASSERT_GT(capped.markerClearance, reachSettings.markerReach) << "point " << p.transpose();
+                ++beyondReach;
+            }
+            ASSERT_EQ(capped.clearance, s.clearance);
             // The marker channel is all that differs.
             ASSERT_EQ(few.clearance, s.clearance);
             ASSERT_EQ(few.inside, s.inside);
@@ -212,6 +226,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         EXPECT_GT(outsideSeen, kPoints / 2) << "scale " << scale;
         EXPECT_GT(positiveSeen, kPoints / 2) << "scale " << scale;
         EXPECT_GT(fewMarkersNear, 10) << "scale " << scale;
+        EXPECT_GT(beyondReach, 10) << "scale " << scale;
     }
 }
 

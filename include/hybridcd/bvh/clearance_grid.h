@@ -22,6 +22,10 @@ struct ClearanceGridSettings
     std::size_t maxCells = std::size_t(1) << 19;
     /// The grid covers the mesh's bounding box grown by this much on every side (world units).
     double margin = 0.0;
+    /// Marker distances are needed only up to about this far (world units): from a few cells
+    /// beyond it, markerClearance saturates at a bound still above it (a lower bound all the
+    /// same), and the markers' distance transform stops there.
+    double markerReach = std::numeric_limits<double>::infinity();
     /// Keep, for each occupied cell, one triangle that marked it (triangleNear()).
     bool keepTriangles = false;
     /// A footprint grid: the triangles count by their shadows on the plane z = 0 (each point's

@@ -14,10 +14,14 @@ inline constexpr double kNoSeedSquaredDistance = 1e20;
 
 /// `seeds` holds nx * ny * nz flags, x fastest (index (z * ny + y) * nx + x), nonzero for a seed.
 /// Returns, per cell, the squared distance in cells between its centre and the nearest seed's
-/// centre: an integer, held exactly in a double, or kNoSeedSquaredDistance without seeds.
+/// centre (an integer), or `cap` where that is `cap` or more (and everywhere without seeds).
 /// Separable: nearest seeds along x by two scans, then Felzenszwalb and Huttenlocher's lower
-/// envelope of parabolas along y and along z, over the cells already reached only.
-std::vector<double> squaredDistanceTransform(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz);
+/// envelope of parabolas along y and along z, over the cells already reached only. The cap is what
+/// lets the values live in 16 or 32 bits: the clearance grid's codes saturate anyway, and only
+/// parabolas whose apex lies below the cap enter an envelope. Instantiated for std::uint16_t and
+/// std::uint32_t.
+template <class Value>
+std::vector<Value> squaredDistanceTransform(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz, Value cap);
 
 /// The same by brute force: every cell against every seed. The reference for the above in tests.
 std::vector<double> squaredDistanceTransformBruteForce(const std::vector<std::uint8_t> &seeds, int nx, int ny, int nz);
