@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace hcd
 {
@@ -24,25 +25,27 @@ int unitsBelow(double squared, double queryOffset, int unitsPerCell, int saturat
     const double units = std::floor(unitsPerCell * (std::sqrt(squared) - queryOffset - 0.5 * kSqrt3) - 1e-9);
     return units <= 0.0 ? 0 : int(std::min<double>(units, saturate));
 }
-/// The squared distance in the plane z = 0 from p to the triangle abc (all at z = 0): zero inside,
-/// else the nearest of its three edges. A triangle seen edge on (an upright face's shadow) is its
-/// edges alone.
-double squaredShadowDistance(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c)
+/// The squared distance in the plane z = 0 from p to the triangle abc (their x and y), in units of
+/// `unit` (a cell: every value stays near the grid's size in cells, far from overflow or
+/// underflow at any scale): zero inside, else the nearest of its three edges. A triangle seen edge
+/// on (an upright face's shadow) is its edges alone.
+double squaredShadowDistance(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c, double inverseUnit)
 {
-    const auto cross = [](double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; };
-    const double ab = cross(b.x() - a.x(), b.y() - a.y(), p.x() - a.x(), p.y() - a.y());
-    const double bc = cross(c.x() - b.x(), c.y() - b.y(), p.x() - b.x(), p.y() - b.y());
-    const double ca = cross(a.x() - c.x(), a.y() - c.y(), p.x() - c.x(), p.y() - c.y());
+    const double ax = (a.x() - p.x()) * inverseUnit, ay = (a.y() - p.y()) * inverseUnit;
+    const double bx = (b.x() - p.x()) * inverseUnit, by = (b.y() - p.y()) * inverseUnit;
+    const double cx = (c.x() - p.x()) * inverseUnit, cy = (c.y() - p.y()) * inverseUnit;
+    // Where p (the origin now) lies against each edge.
+    const double ab = ax * by - ay * bx, bc = bx * cy - by * cx, ca = cx * ay - cy * ax;
     if ((ab > 0.0 && bc > 0.0 && ca > 0.0) || (ab < 0.0 && bc < 0.0 && ca < 0.0))
         return 0.0;
-    const auto toSegment = [&](const Vec3 &u, const Vec3 &v) {
-        const double ex = v.x() - u.x(), ey = v.y() - u.y(), px = p.x() - u.x(), py = p.y() - u.y();
+    const auto toSegment = [](double ux, double uy, double vx, double vy) {
+        const double ex = vx - ux, ey = vy - uy;
         const double length = ex * ex + ey * ey;
-        const double t = length > 0.0 ? std::clamp((px * ex + py * ey) / length, 0.0, 1.0) : 0.0;
-        const double dx = px - t * ex, dy = py - t * ey;
+        const double t = length > 0.0 ? std::clamp(-(ux * ex + uy * ey) / length, 0.0, 1.0) : 0.0;
+        const double dx = ux + t * ex, dy = uy + t * ey;
         return dx * dx + dy * dy;
     };
-    return std::min({toSegment(a, b), toSegment(b, c), toSegment(c, a)});
+    return std::min({toSegment(ax, ay, bx, by), toSegment(bx, by, cx, cy), toSegment(cx, cy, ax, ay)});
 }
 /// The x extent [xl, xr] of the part of triangle abc (its x and y) with y in [yLow, yHigh]; false
 /// when no part of it is. The part is convex: its extremes are corners in the strip or crossings
@@ -115,12 +118,15 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     // Occupied cells: the triangle's bounding box, grown for rounding, cut by a slab around its
     // plane as wide as the cell's projection on the normal. Marks a superset of touched cells.
     std::vector<std::uint8_t> occupiedCell(cellCount, 0);
-    std::vector<std::uint32_t> firstTriangle(settings.keepTriangles ? cellCount : 0, ~0u);
+    // (cell, triangle) for each cell as it becomes occupied: the first triangle that marked it.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> firstMarks;
     const double boxSlack = 1e-9 * magnitude;
     const auto shadow = [planar](const Vec3 &v) { return planar ? Vec3(v.x(), v.y(), 0.0) : v; };
     // Planar: a cell is occupied when the shadow comes within its half diagonal of the centre
     // (shadows of upright faces are segments, which a slab test would not narrow down).
     const double planarReach = 0.5 * kSqrt3 * h * (1.0 + 1e-9) + boxSlack;
+    // Its square in cells, as squaredShadowDistance measures.
+    const double planarReachCells = (planarReach * inverseCellSize_) * (planarReach * inverseCellSize_);
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
         const Vec3 a = shadow(mesh.corner(t, 0)), b = shadow(mesh.corner(t, 1)), c = shadow(mesh.corner(t, 2));
@@ -159,12 +165,13 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                     if (occupiedCell[i])
                         continue;  // already marked, with the first triangle that did
                     const Vec3 centre = origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5);
-                    if (planar ? squaredShadowDistance(centre, a, b, c) <= planarReach * planarReach
+                    if (planar ? squaredShadowDistance(centre, a, b, c, inverseCellSize_) <= planarReachCells
+
                                : std::abs(normal.dot(centre - a)) <= reach)
                     {
                         occupiedCell[i] = 1;
                         if (settings.keepTriangles)
-                            firstTriangle[i] = std::uint32_t(t);
+                            firstMarks.emplace_back(std::uint32_t(i), std::uint32_t(t));
                     }
                 }
             }
@@ -172,10 +179,10 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     occupied_ = std::size_t(std::count(occupiedCell.begin(), occupiedCell.end(), std::uint8_t(1)));
     if (settings.keepTriangles)
     {
-        // 64 cells per word: the word's mask, then its occupied cells' triangles in index order.
+        // 64 cells per word: the word's mask and the occupied cells before it; then each cell's
+        // first triangle at its rank among the occupied cells (index order).
         occupiedMask_.assign((cellCount + 63) / 64, 0);
         occupiedBefore_.assign(occupiedMask_.size(), 0);
-        occupiedTriangle_.reserve(occupied_);
         std::uint32_t count = 0;
         for (std::size_t w = 0; w < occupiedMask_.size(); ++w)
         {
@@ -186,8 +193,12 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             occupiedMask_[w] = mask;
             occupiedBefore_[w] = count;
             count += std::uint32_t(__builtin_popcountll(mask));
-            for (; mask != 0; mask &= mask - 1)
-                occupiedTriangle_.push_back(firstTriangle[base + std::size_t(__builtin_ctzll(mask))]);
+        }
+        occupiedTriangle_.assign(occupied_, 0);
+        for (const auto &[cell, triangle] : firstMarks)
+        {
+            const std::uint64_t below = occupiedMask_[cell / 64] & ((std::uint64_t(1) << (cell % 64)) - 1);
+            occupiedTriangle_[occupiedBefore_[cell / 64] + std::size_t(__builtin_popcountll(below))] = triangle;
         }
     }
     // Half cells of clearance per squared distance (an integer): from 65^2 cells on the codes
@@ -196,38 +207,40 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
     constexpr std::uint16_t kTabled = 65 * 65;
     const std::vector<std::uint16_t> squared = squaredDistanceTransform(occupiedCell, nx_, ny_, nz_, kTabled);
 
-    // Sides: one exact point-in-solid test per face-connected region of free cells.
-    std::vector<std::uint8_t> insideCell(cellCount, 0);
-    labelled_ = solids != nullptr && !planar;
-    if (labelled_ && solids->closedComponentCount() > 0)
-    {
-        // Each region's first cell (its root, bvh/grid_regions.h) gets the point-in-solid test.
-        const std::vector<std::uint32_t> region = freeRegions(occupiedCell, nx_, ny_, nz_);
-        for (std::size_t i = 0; i < cellCount; ++i)
-        {
-            if (occupiedCell[i])
-                continue;
-            if (region[i] != i)
-            {
-                insideCell[i] = insideCell[region[i]];  // the root comes first
-                continue;
-            }
-            const int x = int(i % nx_), y = int((i / nx_) % ny_), z = int(i / (std::size_t(nx_) * ny_));
-            insideCell[i] = solids->insideAnySolid(origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5));
-        }
-    }
-    hasMarkers_ = !markers.empty() && !planar;
+    // Codes: 0 occupied, 1 + half cells outside every solid (at most 126), 128 + half cells inside
+    // one (at most 127); every free cell is coded outside first.
     std::vector<std::uint8_t> halfCells(kTabled);
     for (std::size_t k = 0; k < kTabled; ++k)
         halfCells[k] = std::uint8_t(unitsBelow(double(k), 0.0, 2, 127));
+    const auto unitsAt = [&](std::size_t i) { return squared[i] < kTabled ? halfCells[squared[i]] : 127; };
     cellBytes_.resize(cellCount);
     for (std::size_t i = 0; i < cellCount; ++i)
+        cellBytes_[i] = occupiedCell[i] ? 0 : std::uint8_t(1 + std::min(unitsAt(i), 126));
+
+    // Sides: one exact point-in-solid test per face-connected region of free cells.
+    labelled_ = solids != nullptr && !planar;
+    if (labelled_ && solids->closedComponentCount() > 0)
     {
-        const int units = squared[i] < kTabled ? halfCells[squared[i]] : 127;
-        cellBytes_[i] = occupiedCell[i] ? 0
-                        : insideCell[i] ? std::uint8_t(128 + units)
-                                        : std::uint8_t(1 + std::min(units, 126));
+        // Each region's first cell (its root run's first, bvh/grid_regions.h) gets the
+        // point-in-solid test; every run of the region takes its answer.
+        const FreeRuns runs = freeRegionRuns(occupiedCell, nx_, ny_, nz_);
+        std::vector<std::uint8_t> runInside(runs.first.size(), 0);
+        for (std::size_t r = 0; r < runs.first.size(); ++r)
+        {
+            if (runs.root[r] != r)
+                runInside[r] = runInside[runs.root[r]];  // the root comes first
+            else
+            {
+                const std::size_t i = runs.first[r];
+                const int x = int(i % nx_), y = int((i / nx_) % ny_), z = int(i / (std::size_t(nx_) * ny_));
+                runInside[r] = solids->insideAnySolid(origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5));
+            }
+            if (runInside[r])
+                for (std::size_t i = runs.first[r]; i < runs.end[r]; ++i)
+                    cellBytes_[i] = std::uint8_t(128 + unitsAt(i));
+        }
     }
+    hasMarkers_ = !markers.empty() && !planar;
 
     if (hasMarkers_ && markers.size() <= kMarkersKeptAsPoints)
         markerPoints_ = markers;  // at() measures to each of them: exact, and no second transform
@@ -245,7 +258,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                     for (int x = x0; x <= x1; ++x)
                         markerCell[cellIndex(x, y, z)] = 1;
         }
-        // Whole cells saturate at 255, i.e. from sqrt(squared) = 255 + 1 + sqrt(3) / 2 on; and
+        // Whole cells saturate at 255, i.e. from sqrt(squared) = 255 + sqrt(3) on; and
         // from markerReach plus four cells on, whose bound (a capped square gives a smaller one:
         // the units grow with it) is still a cell beyond the reach.
         std::uint32_t markerCap = 65912;

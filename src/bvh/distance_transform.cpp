@@ -96,9 +96,8 @@ void lowerEnvelope(std::int64_t *f, int n, std::int64_t cap, int *v, std::int64_
     {
         while (k < last && z[k + 1] < q)
             ++k;
-        const std::int64_t gap = q - v[k];
-        // The gap alone may exceed the cap (and 2^31 squared): no overflow past it.
-        f[q] = std::abs(gap) >= 3037000499 ? cap : std::min(cap, gap * gap + h[k]);
+        const std::int64_t gap = q - v[k];  // |gap| < n < 2^31 and h[k] < cap <= 2^32: no overflow
+        f[q] = std::min(cap, gap * gap + h[k]);
     }
 }
 }  // namespace

@@ -7,12 +7,14 @@
 
 namespace hcd
 {
-std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied, int nx, int ny, int nz)
+FreeRuns freeRegionRuns(const std::vector<std::uint8_t> &occupied, int nx, int ny, int nz)
 {
-    const std::size_t plane = std::size_t(nx) * ny, count = plane * nz, rows = std::size_t(ny) * nz;
+    const std::size_t plane = std::size_t(nx) * ny, rows = std::size_t(ny) * nz;
     // Runs of free cells along x, row by row: union-find over runs rather than cells (a row of a
-    // free room is one run). runFirst holds each run's first cell, runEnd one past its last.
-    std::vector<std::uint32_t> runFirst, runEnd, rowRuns(rows + 1, 0);
+    // free room is one run).
+    FreeRuns runs;
+    std::vector<std::uint32_t> &runFirst = runs.first, &runEnd = runs.end, &parent = runs.root;
+    std::vector<std::uint32_t> rowRuns(rows + 1, 0);
     for (std::size_t row = 0; row < rows; ++row)
     {
         rowRuns[row] = std::uint32_t(runFirst.size());
@@ -32,7 +34,7 @@ std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied
         }
     }
     rowRuns[rows] = std::uint32_t(runFirst.size());
-    std::vector<std::uint32_t> parent(runFirst.size());
+    parent.resize(runFirst.size());
     for (std::uint32_t r = 0; r < parent.size(); ++r)
         parent[r] = r;
     // Every parent precedes its child (parent[r] <= r): a root found is the region's first run.
@@ -76,14 +78,21 @@ std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied
         if (row >= std::size_t(ny))
             uniteOverlaps(row, row - std::size_t(ny), std::uint32_t(plane));
     }
-    std::vector<std::uint32_t> region(count);
-    for (std::uint32_t i = 0; i < count; ++i)
-        region[i] = i;  // occupied cells keep their own index
+    // In index order every parent is final before its children: one pass flattens every chain.
     for (std::uint32_t r = 0; r < parent.size(); ++r)
-    {
-        const std::uint32_t label = runFirst[find(r)];
-        std::fill(region.begin() + runFirst[r], region.begin() + runEnd[r], label);
-    }
+        parent[r] = parent[parent[r]];
+    return runs;
+}
+
+std::vector<std::uint32_t> freeRegions(const std::vector<std::uint8_t> &occupied, int nx, int ny, int nz)
+{
+    const std::size_t count = std::size_t(nx) * ny * nz;
+    const FreeRuns runs = freeRegionRuns(occupied, nx, ny, nz);
+    std::vector<std::uint32_t> region(count);
+    for (std::size_t i = 0; i < count; ++i)
+        region[i] = std::uint32_t(i);  // occupied cells keep their own index
+    for (std::size_t r = 0; r < runs.first.size(); ++r)
+        std::fill(region.begin() + runs.first[r], region.begin() + runs.end[r], runs.first[runs.root[r]]);
     return region;
 }
 

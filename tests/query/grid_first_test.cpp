@@ -169,7 +169,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         reachSettings.markerReach = 0.2 * scale;
         const ClearanceGrid reachGrid(*mesh, &solids, markers, reachSettings);
         ASSERT_GT(markers.size(), 8u);
-        int fewMarkersNear = 0, beyondReach = 0;
+        int fewMarkersNear = 0, beyondReach = 0, cappedBelow = 0;
         std::uniform_real_distribution<double> u(-1.6, 1.6), far(-4.0, 4.0);
         // A fixed count (cheap even under the sanitizers): the "not vacuous" checks below need it.
         // One point in four may lie beyond the grid (which ends 0.3 past the mesh's box); another
@@ -206,6 +206,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
                 ASSERT_GT(capped.markerClearance, reachSettings.markerReach) << "point " << p.transpose();
                 ++beyondReach;
             }
+            cappedBelow += capped.markerClearance < s.markerClearance;
             ASSERT_EQ(capped.clearance, s.clearance);
             // The marker channel is all that differs.
             ASSERT_EQ(few.clearance, s.clearance);
@@ -227,6 +228,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         EXPECT_GT(positiveSeen, kPoints / 2) << "scale " << scale;
         EXPECT_GT(fewMarkersNear, 10) << "scale " << scale;
         EXPECT_GT(beyondReach, 10) << "scale " << scale;
+        EXPECT_GT(cappedBelow, 10) << "scale " << scale;  // the cap is applied
     }
 }
 
@@ -418,6 +420,65 @@ TEST(ClearanceGrid, PlanarBoundsAreLowerBoundsOnShadowDistances)
             positiveSeen += s.clearance > 0.0;
         }
         EXPECT_GT(positiveSeen, kPoints / 10) << "scale " << scale;
+    }
+}
+
+// The footprint grid's occupied cells (those that keep a triangle): every cell a shadow touches,
+// found by sampling each shadow densely (corners, edges, inside), and no cell whose centre lies
+// beyond the occupancy reach (half a cube's diagonal) of every shadow, by an independent distance.
+// Shadows of every kind: flat triangles, upright faces (segments, slanted or along the axes),
+// slivers, and a vertical edge-on face whose shadow is a point.
+TEST(ClearanceGrid, FootprintOccupiesTheCellsItsShadowsTouchAndNoFarOnes)
+{
+    test::TestRandom rng(test::seeded(19));
+    for (double scale : {1e-6, 1.0, 1e6})
+    {
+        TriangleMesh mesh = clutter(rng, scale);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        for (int i = 0; i < 6; ++i)
+            append(mesh, uprightTriangle(scale * Vec3(u(rng), u(rng), 0), scale * Vec3(u(rng), u(rng), 0),
+                                         scale * u(rng), scale * (1.0 + u(rng))));
+        append(mesh, uprightTriangle(scale * Vec3(-0.9, 0.25, 0), scale * Vec3(0.9, 0.25, 0), 0.0, scale));
+        append(mesh, uprightTriangle(scale * Vec3(0.4, -0.9, 0), scale * Vec3(0.4, 0.9, 0), 0.0, scale));
+        TriangleMesh odd;
+        odd.vertices = {scale * Vec3(-0.8, -0.5, 0.1), scale * Vec3(0.8, -0.5 + 1e-7, 0.1),
+                        scale * Vec3(0.0, -0.5, 0.2),  // a sliver with an edge almost along x
+                        scale * Vec3(0.1, 0.6, 0.0),   scale * Vec3(0.1, 0.6, 0.5),
+                        scale * Vec3(0.1, 0.6, 1.0)};  // upright and edge on: its shadow is a point
+        odd.triangles = {{0, 1, 2}, {3, 4, 5}};
+        append(mesh, odd);
+        ClearanceGridSettings settings;
+        settings.maxCells = 1 << 13;
+        settings.margin = 0.3 * scale;
+        settings.planar = true;
+        settings.keepTriangles = true;
+        const ClearanceGrid grid(mesh, nullptr, {}, settings);
+        const TriangleMesh shadow = shadowOf(mesh);
+        constexpr int kSteps = 24;
+        for (std::size_t t = 0; t < shadow.triangleCount(); ++t)
+            for (int i = 0; i <= kSteps; ++i)
+                for (int j = 0; i + j <= kSteps; ++j)
+                {
+                    const Vec3 &a = shadow.corner(t, 0), &b = shadow.corner(t, 1), &c = shadow.corner(t, 2);
+                    const Vec3 p = a + (b - a) * (double(i) / kSteps) + (c - a) * (double(j) / kSteps);
+                    ASSERT_GE(grid.triangleNear(p), 0)
+                        << "scale " << scale << " triangle " << t << " point " << p.transpose();
+                }
+        const BoundingBox box = shadow.bounds();
+        const double h = grid.cellSize();
+        int far = 0;
+        for (int y = 0; y < grid.cells()[1]; ++y)
+            for (int x = 0; x < grid.cells()[0]; ++x)
+            {
+                const Vec3 centre(box.min.x() - settings.margin + h * (x + 0.5),
+                                  box.min.y() - settings.margin + h * (y + 0.5), 0.0);
+                if (pointMeshDistance(shadow, centre) > 0.87 * h)
+                {
+                    ASSERT_LT(grid.triangleNear(centre), 0) << "scale " << scale << " centre " << centre.transpose();
+                    ++far;
+                }
+            }
+        EXPECT_GT(far, grid.cells()[0] * grid.cells()[1] / 10) << "scale " << scale;
     }
 }
 

@@ -130,7 +130,8 @@ private:
     static constexpr std::size_t kMarkersKeptAsPoints = 8;
     std::vector<Vec3> markerPoints_;
     /// With more markers, per cell, a lower bound on the distance to the nearest marker in whole
-    /// cells (the byte's value, saturating at 255); read far less often, so kept apart.
+    /// cells (the byte's value, saturating at 255, or from a few cells beyond markerReach on); read far
+    /// less often, so kept apart.
     std::vector<std::uint8_t> markerBytes_;
     /// Lower bound on the distance from p to the nearest marker (markers kept as points), less
     /// `slack`.

@@ -9,7 +9,8 @@
 
 namespace hcd
 {
-/// What the transform gives a cell when the grid holds no seed at all.
+/// What the brute-force transform gives a cell when the grid holds no seed at all (the fast one
+/// gives its cap).
 inline constexpr double kNoSeedSquaredDistance = 1e20;
 
 /// `seeds` holds nx * ny * nz flags, x fastest (index (z * ny + y) * nx + x), nonzero for a seed.
