@@ -388,6 +388,16 @@ TriangleMesh uprightTriangle(const Vec3 &a, const Vec3 &b, double low, double hi
     t.triangles = {{0, 1, 2}};
     return t;
 }
+/// clutter() and six upright triangles on random segments: shadows that are segments.
+TriangleMesh clutterWithUprightFaces(test::TestRandom &rng, double scale)
+{
+    TriangleMesh mesh = clutter(rng, scale);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 6; ++i)
+        append(mesh, uprightTriangle(scale * Vec3(u(rng), u(rng), 0), scale * Vec3(u(rng), u(rng), 0), scale * u(rng),
+                                     scale * (1.0 + u(rng))));
+    return mesh;
+}
 }  // namespace
 
 TEST(ClearanceGrid, PlanarBoundsAreLowerBoundsOnShadowDistances)
@@ -395,11 +405,7 @@ TEST(ClearanceGrid, PlanarBoundsAreLowerBoundsOnShadowDistances)
     test::TestRandom rng(test::seeded(17));
     for (double scale : {1e-6, 1.0, 1e6})
     {
-        TriangleMesh mesh = clutter(rng, scale);
-        std::uniform_real_distribution<double> u(-1.0, 1.0);
-        for (int i = 0; i < 6; ++i)
-            append(mesh, uprightTriangle(scale * Vec3(u(rng), u(rng), 0), scale * Vec3(u(rng), u(rng), 0),
-                                         scale * u(rng), scale * (1.0 + u(rng))));
+        TriangleMesh mesh = clutterWithUprightFaces(rng, scale);
         ClearanceGridSettings settings;
         settings.maxCells = 1 << 14;
         settings.margin = 0.3 * scale;
@@ -433,11 +439,7 @@ TEST(ClearanceGrid, FootprintOccupiesTheCellsItsShadowsTouchAndNoFarOnes)
     test::TestRandom rng(test::seeded(19));
     for (double scale : {1e-6, 1.0, 1e6})
     {
-        TriangleMesh mesh = clutter(rng, scale);
-        std::uniform_real_distribution<double> u(-1.0, 1.0);
-        for (int i = 0; i < 6; ++i)
-            append(mesh, uprightTriangle(scale * Vec3(u(rng), u(rng), 0), scale * Vec3(u(rng), u(rng), 0),
-                                         scale * u(rng), scale * (1.0 + u(rng))));
+        TriangleMesh mesh = clutterWithUprightFaces(rng, scale);
         append(mesh, uprightTriangle(scale * Vec3(-0.9, 0.25, 0), scale * Vec3(0.9, 0.25, 0), 0.0, scale));
         append(mesh, uprightTriangle(scale * Vec3(0.4, -0.9, 0), scale * Vec3(0.4, 0.9, 0), 0.0, scale));
         TriangleMesh odd;
