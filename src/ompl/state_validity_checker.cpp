@@ -100,6 +100,12 @@ bool StateValidityChecker::poseWithinSweptDistance(const RigidTransform &worldFr
     });
 }
 
+bool StateValidityChecker::poseSweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack,
+                                                     double radialSlack) const
+{
+    return timed([&] { return checker_->sweptFreeByFirstLayer(worldFromRobot, translationSlack, radialSlack); });
+}
+
 bool StateValidityChecker::poseListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack,
                                                   double radialSlack, std::size_t limit,
                                                   std::vector<TrianglePair> &near, QueryContext &context) const

@@ -12,7 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <memory>
+#include <utility>
+#include <vector>
 
 using namespace hcd;
 
@@ -334,6 +338,10 @@ TEST(GridFirst, SweptProximityProofsHoldAlongTheSweep)
     {
         const RigidTransform pose = randomPose(rng, 1.3);
         const double slack = 0.02 * (i % 5), radial = 0.05 * (i % 3);
+        // The public first word on swept proximity is the grid's proof; checkers without a first
+        // layer prove nothing.
+        ASSERT_EQ(checker->sweptFreeByFirstLayer(pose, slack, radial), grid->freeByGrid(pose, slack, radial));
+        ASSERT_FALSE(reference->sweptFreeByFirstLayer(pose, slack, radial));
         if (!grid->freeByGrid(pose, slack, radial))
             continue;
         ++proved;
@@ -343,6 +351,14 @@ TEST(GridFirst, SweptProximityProofsHoldAlongTheSweep)
         EXPECT_GT(reference->distance(pose), slack + radial * reach - 1e-12) << i;
     }
     EXPECT_GT(proved, 20);
+    EXPECT_GT(checker->firstLayerCellSize(), 0.0);
+    EXPECT_EQ(reference->firstLayerCellSize(), 0.0);
+    // Slacks that are negative or not numbers prove nothing.
+    const RigidTransform far{Mat3::Identity(), Vec3(50, 50, 50)};
+    EXPECT_TRUE(checker->sweptFreeByFirstLayer(far, 0.01, 0.01));
+    for (const auto &[t, r] : std::vector<std::pair<double, double>>{
+             {-0.01, 0.0}, {0.0, -0.01}, {std::nan(""), 0.0}, {0.0, std::numeric_limits<double>::infinity()}})
+        EXPECT_FALSE(checker->sweptFreeByFirstLayer(far, t, r)) << t << " " << r;
 }
 
 TEST(GridFirst, AnOpenSheetThroughAClosedRobotIsProvedColliding)

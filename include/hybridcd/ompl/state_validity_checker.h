@@ -53,6 +53,9 @@ public:
     bool poseWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const;
     bool poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                  double robotRadius, QueryContext &context) const;
+    /// CollisionChecker::sweptFreeByFirstLayer, counted and timed.
+    bool poseSweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack,
+                                   double radialSlack) const;
     /// CollisionChecker::listSweptNearPairs and sweptNearPairsAmong, counted and timed.
     bool poseListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                 std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const;

@@ -129,6 +129,22 @@ public:
     bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                              double robotRadius, QueryStats *stats = nullptr) const;
 
+    /// A cheap first word on swept proximity, for motion validators: true proves what a false from
+    /// withinSweptDistance proves (no robot point p comes within translationSlack + radialSlack * |p|
+    /// of the environment); false proves nothing. Checkers with a first layer (the clearance grid)
+    /// answer from it alone; the others prove nothing.
+    bool sweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack) const
+    {
+        if (!slacksAreFinite(translationSlack, radialSlack) || translationSlack < 0.0 || radialSlack < 0.0 ||
+            !worldFromRobot.isFinite())
+            return false;
+        return doSweptFreeByFirstLayer(worldFromRobot, translationSlack, radialSlack);
+    }
+    /// The first layer's cell size (world units; 0 without a first layer). A sweep many cells wider
+    /// than this is better split and proved by the first layer than sent to the exact query, which
+    /// grows every box by the whole sweep.
+    virtual double firstLayerCellSize() const { return 0.0; }
+
     /// Swept proximity that says what is near: when it returns true, `near` holds every pair of
     /// robot and environment triangles that may come within the swept slack at this pose (as
     /// withinSweptDistance measures it), and every other pair is proved farther apart; so proving
@@ -221,6 +237,12 @@ private:
     {
         (void)worldFromRobot, (void)translationSlack, (void)radialSlack, (void)context;
         near = pairs;
+        return false;
+    }
+    virtual bool doSweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack,
+                                         double radialSlack) const
+    {
+        (void)worldFromRobot, (void)translationSlack, (void)radialSlack;
         return false;
     }
     /// The default uses the robot's radius for every point; hierarchical checkers use each part's

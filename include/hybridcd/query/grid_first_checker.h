@@ -69,6 +69,12 @@ public:
     bool collidingByGrid(const RigidTransform &worldFromRobot) const;
     bool collidingByWitness(const RigidTransform &worldFromRobot) const;
 
+    /// The footprint grid's cells in a planar scene (its motions stay planar), else the 3D grid's.
+    double firstLayerCellSize() const override
+    {
+        return !footprintGrid_.empty() ? footprintGrid_.cellSize() : grid_.empty() ? 0.0 : grid_.cellSize();
+    }
+
 private:
     /// Fills leafStart_ and leafTriangles_ from cover_ and robot_.
     void indexLeafTriangles();
@@ -84,6 +90,11 @@ private:
     bool doWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const override;
     bool doWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                double robotRadius, QueryContext &context) const override;
+    bool doSweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack,
+                                 double radialSlack) const override
+    {
+        return freeByGrid(worldFromRobot, translationSlack, radialSlack);
+    }
     std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
                                         QueryContext &context) const override
     {
