@@ -57,6 +57,8 @@ constexpr std::size_t kFrontLimit = 64;
 // Listing costs a whole traversal without the early exit: only intervals at least this many
 // splits below a starting interval list their pairs, where the near contact has shown itself
 // persistent (listing from the first failure made Maze's and alpha-1.5's means 20-50% worse).
+// Splits of sweeps too wide for the exact query count too: an interval they leave lists at its
+// first exact failure (counting only exact failures measured level, within the noise).
 constexpr int kFrontDepth = 2;
 
 // A part [a, b] of the motion (fractions) still to certify.
@@ -70,7 +72,7 @@ struct MotionInterval
 // A sweep wider than this many of the first layer's cells (the clearance grid's) is proved by the
 // first layer or split, never sent to the exact query: that query grows every box by the whole
 // sweep and prunes poorly, while halves are often proved by the grid alone (bench/README.md,
-// section 3: Maze_planar's verdict 17% cheaper on average, alpha-1.5's 13%).
+// section 3, "Wide sweeps": Maze_planar's verdict 31% cheaper on average, alpha-1.5's 17%).
 constexpr double kExactSweepCells = 3.0;
 
 // Pairs kept in the fronts of one motion at most: beyond, intervals query the whole scene again
@@ -88,15 +90,17 @@ public:
         int childFront = -1;     ///< the front its halves (or a bracket inside it) test
     };
 
-    /// `listedFronts` counts the fronts listed; `useFronts` false queries the whole scene always.
+    /// `listedFronts` counts the fronts listed and `wideSweeps` the intervals too wide for the exact
+    /// query; `useFronts` false queries the whole scene always.
     IntervalChecks(const StateValidityChecker &validity, double robotRadius, QueryContext &context, bool useFronts,
-                   std::atomic<std::uint64_t> &listedFronts)
+                   std::atomic<std::uint64_t> &listedFronts, std::atomic<std::uint64_t> &wideSweeps)
         : validity_(validity),
           robotRadius_(robotRadius),
           exactSweepAbove_(kExactSweepCells * validity.checker().firstLayerCellSize()),
           context_(context),
           useFronts_(useFronts),
-          listedFronts_(listedFronts)
+          listedFronts_(listedFronts),
+          wideSweeps_(wideSweeps)
     {
     }
 
@@ -120,6 +124,7 @@ public:
         if (exactSweepAbove_ > 0.0 && translationSlack + radialSlack * robotRadius_ > exactSweepAbove_)
         {
             // Too wide for the exact query: the first layer's proof, or halves (no front listed).
+            wideSweeps_.fetch_add(1, std::memory_order_relaxed);
             out.certified = validity_.poseSweptFreeByFirstLayer(middle, translationSlack, radialSlack);
             out.colliding = !out.certified && !middleKnownFree && validity_.poseCollides(middle, context_);
             return out;
@@ -156,6 +161,7 @@ private:
     QueryContext &context_;
     bool useFronts_;
     std::atomic<std::uint64_t> &listedFronts_;
+    std::atomic<std::uint64_t> &wideSweeps_;
     std::vector<std::vector<TrianglePair>> fronts_;
     std::size_t keptPairs_ = 0;
     std::vector<TrianglePair> near_;
@@ -338,7 +344,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
 
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
     // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
-    IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_);
+    IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_, wideSweeps_);
     // Start from OMPL's segments rather than [0, 1]: short intervals need small clearances, which
     // the proximity query settles quickly. The earliest segment is processed first, so that
     // [0, certified] is a proven-free prefix.
@@ -486,7 +492,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     // Certification of the dyadic intervals between the raked states (or of groups of them), by
     // bisection with the swept-proximity query. A middle state that is a raked state is known to
     // be collision-free; any other is checked for collision before splitting.
-    IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_);
+    IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_, wideSweeps_);
     std::vector<MotionInterval> pending;
     const std::uint64_t starts = std::max<std::uint64_t>(1, m / kStartGroup);
     for (std::uint64_t k = 1; k <= starts; ++k)

@@ -257,10 +257,12 @@ void expectVerdictMatchesBracketing(const std::string &cfg, int motions)
                 << "accepted motion " << i << " of " << cfg << " touches at " << double(k) / steps;
         }
     }
-    // Both outcomes occur, so both paths are exercised, and so do fronts.
+    // Both outcomes occur, so both paths are exercised, and so do fronts and sweeps too wide for
+    // the exact query (left to the grid or split).
     EXPECT_GT(free, 0) << cfg;
     EXPECT_GT(blocked, 0) << cfg;
     EXPECT_GT(validator.nearPairFrontsListed(), 0u) << cfg;
+    EXPECT_GT(validator.wideSweeps(), 0u) << cfg;
     si->freeState(a);
     si->freeState(b);
     si->freeState(s);

@@ -102,6 +102,9 @@ public:
     void setNearPairFronts(bool use) { useFronts_ = use; }
     /// Fronts listed so far (CollisionChecker::listSweptNearPairs calls that succeeded).
     std::uint64_t nearPairFrontsListed() const { return listedFronts_.load(); }
+    /// Intervals whose sweep was too wide for the exact query, proved by the first layer (the
+    /// clearance grid) or split, so far.
+    std::uint64_t wideSweeps() const { return wideSweeps_.load(); }
 
     std::uint64_t validMotions() const { return validCount_.load(); }
     std::uint64_t invalidMotions() const { return invalidCount_.load(); }
@@ -133,6 +136,7 @@ private:
     bool toleranceIsSegment_ = false;
     bool applyBounds_ = true;
     bool useFronts_ = true;
-    mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0}, translationBrackets_{0}, listedFronts_{0};
+    mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0}, translationBrackets_{0}, listedFronts_{0},
+        wideSweeps_{0};
 };
 }  // namespace hcd

@@ -132,11 +132,11 @@ public:
     /// A cheap first word on swept proximity, for motion validators: true proves what a false from
     /// withinSweptDistance proves (no robot point p comes within translationSlack + radialSlack * |p|
     /// of the environment); false proves nothing. Checkers with a first layer (the clearance grid)
-    /// answer from it alone; the others prove nothing.
+    /// answer from it alone; the others prove nothing. A negative or non-finite slack, or a
+    /// non-finite pose, gives false.
     bool sweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack) const
     {
-        if (!slacksAreFinite(translationSlack, radialSlack) || translationSlack < 0.0 || radialSlack < 0.0 ||
-            !worldFromRobot.isFinite())
+        if (!slacksAreFinite(translationSlack, radialSlack) || !worldFromRobot.isFinite())
             return false;
         return doSweptFreeByFirstLayer(worldFromRobot, translationSlack, radialSlack);
     }

@@ -69,7 +69,9 @@ public:
     bool collidingByGrid(const RigidTransform &worldFromRobot) const;
     bool collidingByWitness(const RigidTransform &worldFromRobot) const;
 
-    /// The footprint grid's cells in a planar scene (its motions stay planar), else the 3D grid's.
+    /// The footprint grid's cells in a planar scene, else the 3D grid's. A planar scene's proofs
+    /// fall back to the coarser 3D grid for poses that are not planar and for sweeps of the robot's
+    /// reach or more: those only cost time.
     double firstLayerCellSize() const override
     {
         return !footprintGrid_.empty() ? footprintGrid_.cellSize() : grid_.empty() ? 0.0 : grid_.cellSize();
