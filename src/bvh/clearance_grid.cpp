@@ -166,17 +166,16 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                         continue;  // already marked, with the first triangle that did
                     const Vec3 centre = origin_ + h * Vec3(x + 0.5, y + 0.5, z + 0.5);
                     if (planar ? squaredShadowDistance(centre, a, b, c, inverseCellSize_) <= planarReachCells
-
                                : std::abs(normal.dot(centre - a)) <= reach)
                     {
                         occupiedCell[i] = 1;
+                        ++occupied_;  // each cell once: occupied cells are skipped above
                         if (settings.keepTriangles)
                             firstMarks.emplace_back(std::uint32_t(i), std::uint32_t(t));
                     }
                 }
             }
     }
-    occupied_ = std::size_t(std::count(occupiedCell.begin(), occupiedCell.end(), std::uint8_t(1)));
     if (settings.keepTriangles)
     {
         // 64 cells per word: the word's mask and the occupied cells before it; then each cell's

@@ -2,7 +2,6 @@
 #include "hybridcd/bvh/grid_regions.h"
 
 #include <algorithm>
-
 #include <cstddef>
 
 namespace hcd
