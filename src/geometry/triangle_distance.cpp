@@ -282,7 +282,8 @@ bool trianglesWithinDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, con
     //    between points of the triangles, so never below the true one).
     if (someFeatureWithin(a0, a1, a2, b0, b1, b2, bound))
         return true;
-    // 3. Otherwise only an intersection (distance 0) puts them within.
-    return bound >= 0.0 && trianglesIntersect(a0, a1, a2, b0, b1, b2);
+    // 3. Otherwise only an intersection (distance 0) puts them within; none is possible when one
+    //    triangle lies certainly on one side of the other's plane (a positive gap, as orient3d has it).
+    return bound >= 0.0 && !(gap > 0.0) && trianglesIntersect(a0, a1, a2, b0, b1, b2);
 }
 }  // namespace hcd
