@@ -50,6 +50,9 @@ public:
 
     const VolumeTree<Volume> &robotTree() const { return robotTree_; }
     const VolumeTree<Volume> &environmentTree() const { return environmentTree_; }
+    /// Whether the distance search splits both nodes of a pair at once (trees alike in size: triangle
+    /// counts and root spheres within 2x of each other) rather than the larger one.
+    bool distanceDescendsInLockstep() const { return lockstepDistance_; }
     /// The convex pieces of the LP stage (empty without it).
     const ConvexDecomposition &robotPieces() const { return robotPieces_; }
     const ConvexDecomposition &environmentPieces() const { return environmentPieces_; }
@@ -113,6 +116,7 @@ private:
     std::vector<double> robotTriangleReach_;                 ///< per robot triangle: max |corner|
     std::optional<PieceStage> pieceStage_;
     std::optional<double> leafTolerance_;  ///< approximate mode of the medial spheres
+    bool lockstepDistance_ = false;        ///< distanceDescendsInLockstep()
     ConvexDecomposition robotPieces_, environmentPieces_;
 };
 
