@@ -440,13 +440,13 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
         const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
         if (rn.isLeaf() && en.isLeaf() && rn.triangleCount == 1 && en.triangleCount == 1)
         {
-            // Two triangles: their own world boxes are tighter than a robot volume re-boxed or turned.
+            // Two triangles: their own world boxes are tighter than a robot volume re-boxed or
+            // turned, and where they fail the triangles' distance (which the culls of
+            // disjointTriangleDistanceBelow keep cheap) costs about what the volumes' bound would
+            // (bugtrap's clearance 5% cheaper without that bound, alpha-1.5's 2%).
             const PlacedTriangle &a = placed.triangle(robotTree_.triangleOrder()[rn.firstTriangle]);
             const TriangleBounds &b = environmentTriangleBounds_[environmentTree_.triangleOrder()[en.firstTriangle]];
-            const double boxGap = boxSeparation(a.min, a.max, b.min, b.max).norm() - tolerance;
-            // An axis-aligned robot leaf re-boxed holds the triangle's own box: its bound is no better.
-            if (boxGap >= best || std::is_same_v<Volume, Aabb>)
-                return std::max(sphereGap, boxGap);
+            return std::max(sphereGap, boxSeparation(a.min, a.max, b.min, b.max).norm() - tolerance);
         }
         // Boxes stop at the first stage of their bound that puts the pair beyond the best distance.
         if constexpr (std::is_same_v<Volume, Obb>)
