@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // hcd::trianglesIntersect against an independent, slower formulation in exact rational
-// arithmetic. The library decides "an edge of one triangle meets the other" with orientation
-// predicates; the reference here instead intersects the two triangles with the common line of
+// arithmetic. The library decides with orientation predicates ("an edge of one triangle meets the
+// other", or Devillers and Guigue's two orientations when each triangle strictly straddles the
+// other's plane); the reference here instead intersects the two triangles with the common line of
 // their planes (Moeller's interval method) or, for coplanar pairs, runs a separating axis test,
 // both with exact rationals and without any library predicate. Degenerate triangles are checked
 // against a third formulation: a small exact linear program per pair of edge and convex piece.
