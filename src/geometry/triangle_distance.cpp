@@ -106,29 +106,8 @@ double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 
 
 namespace
 {
-/// Squared distance between the segments' lines where their nearest points lie strictly inside both
-/// segments, else +infinity. Between two triangles this is the only edge pair that can matter: when
-/// the segments' nearest points include an endpoint, that vertex is at least as near to the other
-/// triangle, and its vertex-to-triangle distance is measured anyway.
-double edgeInteriorDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1)
-{
-    const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-    const double a = d1.squaredNorm(), e = d2.squaredNorm(), b = d1.dot(d2);
-    const double denom = a * e - b * b;  // 0 for parallel or degenerate edges: an endpoint is nearest
-    if (!(denom > 0.0))
-        return std::numeric_limits<double>::infinity();
-    const double c = d1.dot(r), f = d2.dot(r);
-    const double s = (b * f - c * e) / denom;
-    if (!(s > 0.0 && s < 1.0))
-        return std::numeric_limits<double>::infinity();
-    const double t = (b * s + f) / e;
-    if (!(t > 0.0 && t < 1.0))
-        return std::numeric_limits<double>::infinity();
-    return (r + s * d1 - t * d2).squaredNorm();
-}
-
 // Squared distance of two disjoint closed triangles: they attain it at a vertex of one or between
-// two edges' interiors.
+// two edges.
 double disjointTriangleDistanceSquared(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                                        const Vec3 &b2)
 {
@@ -139,7 +118,7 @@ double disjointTriangleDistanceSquared(const Vec3 &a0, const Vec3 &a1, const Vec
         best = std::min(best, (*a[i] - closestPointOnTriangle(*a[i], b0, b1, b2)).squaredNorm());
         best = std::min(best, (*b[i] - closestPointOnTriangle(*b[i], a0, a1, a2)).squaredNorm());
         for (int j = 0; j < 3; ++j)
-            best = std::min(best, edgeInteriorDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
+            best = std::min(best, segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
     }
     return best;
 }
@@ -212,7 +191,7 @@ bool someFeatureWithin(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec
         const double gapA = segmentPlaneGap(fromB[i], fromB[(i + 1) % 3]) - errorB;
         for (int j = 0; j < 3; ++j)
             if (std::max(gapA, segmentPlaneGap(fromA[j], fromA[(j + 1) % 3]) - errorA) <= bound &&
-                std::sqrt(edgeInteriorDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3])) <= bound)
+                std::sqrt(segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3])) <= bound)
                 return true;
     }
     return false;
@@ -228,7 +207,11 @@ double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 
     // Without a bound yet, a0's distance to B is one: it is among the candidates, and the other
     // fourteen are then culled against it.
     if (!(best < std::numeric_limits<double>::infinity()))
-        best = std::sqrt((a0 - closestPointOnTriangle(a0, b0, b1, b2)).squaredNorm());
+    {
+        const double first = std::sqrt((a0 - closestPointOnTriangle(a0, b0, b1, b2)).squaredNorm());
+        if (first < std::numeric_limits<double>::infinity())
+            best = first;  // (not when non-finite: the full minimum below decides then)
+    }
     double fromB[3], fromA[3], errorB = 0.0, errorA = 0.0;  // A's vertices from B's plane and B's from A's
     if (!(best < std::numeric_limits<double>::infinity()) ||
         !planeDistances(b0, b1, b2, a0, a1, a2, scale + best, fromB, errorB) ||
@@ -258,7 +241,7 @@ double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 
         const double gapA = segmentPlaneGap(fromB[i], fromB[(i + 1) % 3]) - errorB;
         for (int j = 0; j < 3; ++j)
             if (std::max(gapA, segmentPlaneGap(fromA[j], fromA[(j + 1) % 3]) - errorA) <= limit)
-                keep(edgeInteriorDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
+                keep(segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
     }
     return std::min(best, std::sqrt(bestSquared));
 }

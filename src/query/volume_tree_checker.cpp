@@ -128,12 +128,13 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
     }
     // Two trees alike in size (a puzzle of like parts, as alpha-1.5's): the pairs between a node
     // and the other's children rarely prune there, and splitting both nodes at once skips their
-    // bounds (alpha-1.5's clearance 20% cheaper). Elsewhere it costs: bugtrap's small robot inside
-    // a large trap 2x, Easy's 10% (bench/README.md, section 1, "Clearance").
+    // tests. On alpha-1.5 clearance is 20% cheaper, the mean state check 19% and the mean motion
+    // check 20%; splitting both everywhere costs elsewhere (bugtrap's clearance 2x, Easy's 9%;
+    // bench/README.md, section 1, "Clearance").
     const auto within2x = [](double x, double y) { return x <= 2.0 * y && y <= 2.0 * x; };
-    lockstepDistance_ = !robotTree_.empty() && !environmentTree_.empty() &&
-                        within2x(double(scene_.robot->triangleCount()), double(scene_.environment->triangleCount())) &&
-                        within2x(robotTree_.nodes()[0].radius, environmentTree_.nodes()[0].radius);
+    lockstep_ = !robotTree_.empty() && !environmentTree_.empty() &&
+                within2x(double(scene_.robot->triangleCount()), double(scene_.environment->triangleCount())) &&
+                within2x(robotTree_.nodes()[0].radius, environmentTree_.nodes()[0].radius);
     const TriangleMesh &env = *scene_.environment;
     environmentTriangleBounds_.reserve(env.triangleCount());
     for (std::size_t t = 0; t < env.triangleCount(); ++t)
@@ -356,6 +357,15 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             }
             continue;
         }
+        // Like trees: both nodes at once (see the constructor).
+        if (lockstep_ && !rn.isLeaf() && !en.isLeaf())
+        {
+            stack.push({std::uint32_t(rn.firstChild + 1), std::uint32_t(en.firstChild + 1)});
+            stack.push({std::uint32_t(rn.firstChild + 1), std::uint32_t(en.firstChild)});
+            stack.push({std::uint32_t(rn.firstChild), std::uint32_t(en.firstChild + 1)});
+            stack.push({std::uint32_t(rn.firstChild), std::uint32_t(en.firstChild)});
+            continue;
+        }
         // Split the node whose box is larger (by its largest extent); leaves cannot be split.
         const bool splitRobot = en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
         if (splitRobot)
@@ -469,7 +479,7 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
     const auto split = [&](const NodePair &p, NodePair *children) {
         const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
         const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
-        if (lockstepDistance_ && !rn.isLeaf() && !en.isLeaf())
+        if (lockstep_ && !rn.isLeaf() && !en.isLeaf())
         {
             for (int i = 0; i < 2; ++i)
                 for (int j = 0; j < 2; ++j)

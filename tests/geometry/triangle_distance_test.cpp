@@ -109,52 +109,6 @@ TEST(TriangleDistance, DisjointDistanceIsTheDistanceBitForBit)
     EXPECT_GT(disjoint, 3000u);
 }
 
-// A second method: the minimum over the six vertex-to-triangle distances and all nine edge pairs,
-// each measured in full by segmentSegmentDistanceSquared (endpoints included). triangleDistance
-// measures only edge pairs nearest inside both edges; it must agree to rounding on the pairs above,
-// on translated copies (every edge parallel to one of the other's) and on copies turned by tiny
-// angles (nearly parallel edges, where the interior test is most fragile).
-TEST(TriangleDistance, EdgePairsNearestAtAnEndpointNeverDecide)
-{
-    hcd::test::TestRandom rng(hcd::test::seeded(2714));
-    std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    const auto point = [&] { return Vec3(unit(rng), unit(rng), unit(rng)); };
-    std::size_t compared = 0;
-    for (const double scale : {1e-6, 1.0, 1e6})
-    {
-        std::vector<std::array<Triangle, 2>> pairs = trianglePairs(scale, 3000, rng);
-        for (int i = 0; i < 3000; ++i)
-        {
-            const Triangle a = {scale * point(), scale * point(), scale * point()};
-            const Vec3 shift = scale * (i % 2 == 0 ? point() : 1e-3 * point());
-            const double angle = i % 3 == 0 ? 0.0 : 1e-7 * unit(rng);
-            const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, point().normalized()).toRotationMatrix();
-            Triangle b;
-            for (int k = 0; k < 3; ++k)
-                b[std::size_t(k)] = turn * a[std::size_t(k)] + shift;
-            pairs.push_back({a, b});
-        }
-        for (const auto &p : pairs)
-        {
-            const Triangle &a = p[0], &b = p[1];
-            if (hcd::trianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2]))
-                continue;
-            double squared = std::numeric_limits<double>::infinity();
-            for (std::size_t i = 0; i < 3; ++i)
-            {
-                squared = std::min(squared, (a[i] - hcd::closestPointOnTriangle(a[i], b[0], b[1], b[2])).squaredNorm());
-                squared = std::min(squared, (b[i] - hcd::closestPointOnTriangle(b[i], a[0], a[1], a[2])).squaredNorm());
-                for (std::size_t j = 0; j < 3; ++j)
-                    squared = std::min(squared,
-                                       hcd::segmentSegmentDistanceSquared(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]));
-            }
-            ++compared;
-            ASSERT_NEAR(distanceOf(p), std::sqrt(squared), 1e-9 * scale) << "scale " << scale;
-        }
-    }
-    EXPECT_GT(compared, 10000u);
-}
-
 // The pruned distance against the full one, for bests around the distance itself, on the pairs above,
 // on slivers (a corner within 1e-9 of the opposite edge) and on small triangles far from the origin.
 TEST(TriangleDistance, DistanceBelowABestIsTheMinimumBitForBit)

@@ -5,6 +5,7 @@
 // "apart" wrongly, or a distance bound above the truth, shows.
 #include "support/test_support.h"
 
+#include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/query/brute_force_checker.h"
 #include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/query/volume_tree_checker.h"
@@ -15,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <random>
 #include <tuple>
@@ -221,23 +223,23 @@ TriangleMesh torusMesh(double major, double minor, int rings, int sides)
 }  // namespace
 
 // Two like parts (a torus against a copy of itself, the alpha puzzle's kind of scene): the
-// distance search splits both nodes of a pair at once there, and only there, and still gives
-// bruteforce's distance on every free pose, linked rings and near misses included (an exact
-// match, as above).
+// traversals split both nodes of a pair at once there, and only there, and still give
+// bruteforce's answers: the distance on every pose, linked rings and near misses included (an
+// exact match, as above), collisions, and proximity within a few distances.
 TEST(VolumeAgreement, LikePartsDescendInLockstepAndStayExact)
 {
-    const auto torus = std::make_shared<const TriangleMesh>(torusMesh(1.0, 0.25, 24, 10));
+    const auto torus = std::make_shared<const TriangleMesh>(torusMesh(1.0, 0.25, 16, 8));
     const CollisionScene alike{torus, torus, "torus", "torus"};
     const ObbTreeChecker lockstep(alike, "obb");
-    ASSERT_TRUE(lockstep.distanceDescendsInLockstep());
+    ASSERT_TRUE(lockstep.descendsInLockstep());
     const CollisionScene unlike{std::make_shared<const TriangleMesh>(test::boxMesh(Vec3::Zero(), Vec3::Ones())), torus,
                                 "box", "torus"};
-    EXPECT_FALSE(ObbTreeChecker(unlike, "obb").distanceDescendsInLockstep());
+    EXPECT_FALSE(ObbTreeChecker(unlike, "obb").descendsInLockstep());
 
     const BruteForceChecker reference(alike);
     test::TestRandom rng(test::seeded(4411));
-    std::uniform_real_distribution<double> offset(-0.6, 0.6);
-    std::size_t free = 0;
+    std::uniform_real_distribution<double> offset(-0.6, 0.6), slack(0.0, 0.3);
+    std::size_t free = 0, swept[2] = {0, 0};
     for (int i = 0; i < test::cases(300); ++i)
     {
         // Half the poses link the rings (the copy turned a quarter about x and shifted by its
@@ -257,6 +259,38 @@ TEST(VolumeAgreement, LikePartsDescendInLockstepAndStayExact)
         const double expected = reference.distance(pose);
         free += expected > 0.0 ? 1 : 0;
         ASSERT_EQ(lockstep.distance(pose), expected) << "pose " << i;
+        ASSERT_EQ(lockstep.collides(pose), reference.collides(pose)) << "pose " << i;
+        for (const double delta : {0.5 * expected, expected, 2.0 * expected + 1e-3})
+            ASSERT_EQ(lockstep.withinDistance(pose, delta), reference.withinDistance(pose, delta))
+                << "pose " << i << ", delta " << delta;
+        if (i >= test::cases(60))
+            continue;
+        // Swept proximity (each robot triangle's reach grows with its distance from the robot
+        // origin) against every triangle pair measured directly; ties within rounding are skipped.
+        const double translation = slack(rng), radial = 0.2 * slack(rng);
+        double margin = std::numeric_limits<double>::infinity();  // least distance beyond reach
+        for (std::size_t a = 0; a < torus->triangleCount(); ++a)
+        {
+            const Vec3 a0 = pose.apply(torus->corner(a, 0)), a1 = pose.apply(torus->corner(a, 1)),
+                       a2 = pose.apply(torus->corner(a, 2));
+            const double reach =
+                translation +
+                radial * std::max({torus->corner(a, 0).norm(), torus->corner(a, 1).norm(), torus->corner(a, 2).norm()});
+            for (std::size_t b = 0; b < torus->triangleCount(); ++b)
+                margin = std::min(margin, triangleDistance(a0, a1, a2, torus->corner(b, 0), torus->corner(b, 1),
+                                                           torus->corner(b, 2)) -
+                                              reach);
+        }
+        if (std::abs(margin) > 1e-9)
+        {
+            ++swept[margin <= 0.0 ? 1 : 0];
+            ASSERT_EQ(lockstep.withinSweptDistance(pose, translation, radial, torus->radiusAboutOrigin()),
+                      margin <= 0.0)
+                << "pose " << i << ", margin " << margin;
+        }
     }
+    // Both swept answers occur, or that part proves little.
+    EXPECT_GT(swept[0], 3u);
+    EXPECT_GT(swept[1], 3u);
     EXPECT_GT(free, std::size_t(test::cases(300) / 5));
 }

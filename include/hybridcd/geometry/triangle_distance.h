@@ -17,9 +17,10 @@ void closestPointsOfSegments(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, con
 double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1);
 
 /// Distance between two closed triangles: 0 when they intersect (decided exactly), otherwise the
-/// smallest of the vertex-to-triangle distances and the distances between edges whose nearest points
-/// lie inside both (an edge pair nearest at an endpoint is never nearer than that vertex is to the
-/// other triangle), in floating point (relative error a few ulps of the coordinates' magnitude).
+/// smallest of the vertex-to-triangle and edge-to-edge distances, in floating point (relative error a
+/// few ulps of the coordinates' magnitude). The edge pairs are measured in full, endpoints included:
+/// they also measure every vertex's distance to the other's edges robustly, where the vertex-to-
+/// triangle regions of a sliver are not.
 double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2);
 
 /// triangleDistance, bit for bit, for two triangles known not to intersect (e.g. after a collision

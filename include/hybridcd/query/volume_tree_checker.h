@@ -12,8 +12,9 @@ namespace hcd
 {
 struct PlacedTriangle;
 
-/// Simultaneous descent of two trees, always splitting the node with the larger circumscribed
-/// sphere, with an early exit on the first intersecting triangle pair. Each node pair is tested
+/// Simultaneous descent of two trees, splitting the node with the larger circumscribed sphere (both
+/// at once where the trees are alike, descendsInLockstep()), with an early exit on the first
+/// intersecting triangle pair. Each node pair is tested
 /// with the spheres first, then the volumes (VolumeTraits<Volume>::overlap, conservative); at the
 /// leaves an exact axis-aligned reject, then the exact triangle test. So the answer equals
 /// BruteForceChecker's whatever the volume. Instantiated for every volume in volume_traits.h.
@@ -50,9 +51,9 @@ public:
 
     const VolumeTree<Volume> &robotTree() const { return robotTree_; }
     const VolumeTree<Volume> &environmentTree() const { return environmentTree_; }
-    /// Whether the distance search splits both nodes of a pair at once (trees alike in size: triangle
+    /// Whether the traversals split both nodes of a pair at once (trees alike in size: triangle
     /// counts and root spheres within 2x of each other) rather than the larger one.
-    bool distanceDescendsInLockstep() const { return lockstepDistance_; }
+    bool descendsInLockstep() const { return lockstep_; }
     /// The convex pieces of the LP stage (empty without it).
     const ConvexDecomposition &robotPieces() const { return robotPieces_; }
     const ConvexDecomposition &environmentPieces() const { return environmentPieces_; }
@@ -116,7 +117,7 @@ private:
     std::vector<double> robotTriangleReach_;                 ///< per robot triangle: max |corner|
     std::optional<PieceStage> pieceStage_;
     std::optional<double> leafTolerance_;  ///< approximate mode of the medial spheres
-    bool lockstepDistance_ = false;        ///< distanceDescendsInLockstep()
+    bool lockstep_ = false;                ///< descendsInLockstep()
     ConvexDecomposition robotPieces_, environmentPieces_;
 };
 
