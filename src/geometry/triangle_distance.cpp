@@ -206,7 +206,7 @@ double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 
         scale = std::max(scale, v->cwiseAbs().maxCoeff());
     // Without a bound yet, a0's distance to B is one: it is among the candidates, and the other
     // fourteen are then culled against it.
-    if (!(best < std::numeric_limits<double>::infinity()))
+    if (best == std::numeric_limits<double>::infinity())
     {
         const double first = std::sqrt((a0 - closestPointOnTriangle(a0, b0, b1, b2)).squaredNorm());
         if (first < std::numeric_limits<double>::infinity())

@@ -152,6 +152,34 @@ TEST(TriangleDistance, DistanceBelowABestIsTheMinimumBitForBit)
     EXPECT_GT(below, 20000u);
 }
 
+// Non-finite input (a NaN corner, coordinates whose squares overflow, a NaN best): the pruned
+// distance is still the minimum of its best and the full distance, NaN exactly where that is.
+TEST(TriangleDistance, DistanceBelowKeepsTheMinimumOnNonFiniteInput)
+{
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    const Triangle a = {Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1)}, b = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    std::vector<std::array<Triangle, 2>> pairs = {{a, b}};
+    Triangle withNan = a;
+    withNan[0].x() = nan;
+    pairs.push_back({withNan, b});
+    Triangle huge = a;
+    for (Vec3 &v : huge)
+        v *= 1e200;
+    pairs.push_back({huge, b});
+    pairs.push_back({b, huge});
+    const auto same = [](double x, double y) { return (std::isnan(x) && std::isnan(y)) || x == y; };
+    for (const auto &p : pairs)
+    {
+        const double d = hcd::disjointTriangleDistance(p[0][0], p[0][1], p[0][2], p[1][0], p[1][1], p[1][2]);
+        for (const double best : {inf, nan, 0.5, 2.0, 0.0})
+        {
+            const double below =
+                hcd::disjointTriangleDistanceBelow(p[0][0], p[0][1], p[0][2], p[1][0], p[1][1], p[1][2], best);
+            EXPECT_TRUE(same(below, std::min(best, d))) << "best " << best << ": " << below << " against " << d;
+        }
+    }
+}
+
 // Dense sampling: every sampled pair of points is at least the distance apart (less rounding), and
 // the nearest sampled pair is within the sampling's resolution of it.
 TEST(TriangleDistance, BracketsDenseSampling)

@@ -30,7 +30,7 @@ double disjointTriangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, 
 
 /// `min(best, disjointTriangleDistance(a, b))`, bit for bit, with less work when `best` is small:
 /// a vertex or edge whose distance the triangles' planes already put beyond `best` (with a margin far
-/// above rounding) is not measured; with `best` infinite, the first vertex's distance serves as it.
+/// above rounding) is not measured; with `best` infinite, the first vertex's distance serves as it (when finite).
 /// For branch and bound over triangle pairs.
 double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                                      const Vec3 &b2, double best);
