@@ -163,35 +163,55 @@ bool planeDistances(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &
 /// it may cross it).
 double segmentPlaneGap(double s, double t) { return (s > 0.0) == (t > 0.0) ? std::min(std::abs(s), std::abs(t)) : 0.0; }
 
-/// sqrt(disjointTriangleDistanceSquared(a, b)) <= bound, the same answer, stopping at the first
-/// vertex or edge within the bound and skipping those the planes put beyond it (as in
-/// disjointTriangleDistanceBelow: a skipped one's computed distance is above the bound too).
-bool someFeatureWithin(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2,
-                       double bound)
+/// The largest coordinate magnitude among the six corners.
+double magnitudeOf(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
 {
     double scale = 0.0;
     for (const Vec3 *v : {&a0, &a1, &a2, &b0, &b1, &b2})
         scale = std::max(scale, v->cwiseAbs().maxCoeff());
-    double fromB[3], fromA[3], errorB = 0.0, errorA = 0.0;  // A's vertices from B's plane and B's from A's
-    if (!(bound >= 0.0) || !planeDistances(b0, b1, b2, a0, a1, a2, scale + bound, fromB, errorB) ||
-        !planeDistances(a0, a1, a2, b0, b1, b2, scale + bound, fromA, errorA))
-        return std::sqrt(disjointTriangleDistanceSquared(a0, a1, a2, b0, b1, b2)) <= bound;
+    return scale;
+}
+
+/// A's vertices' signed distances from B's plane and B's from A's, each with its error margin
+/// (planeDistances, for distances up to `reach` beyond the corners' magnitude `scale`).
+struct FacingPlanes
+{
+    double fromB[3], fromA[3];
+    double errorB = 0.0, errorA = 0.0;
+};
+
+bool facingPlanes(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2,
+                  double scale, double reach, FacingPlanes &out)
+{
+    return planeDistances(b0, b1, b2, a0, a1, a2, scale + reach, out.fromB, out.errorB) &&
+           planeDistances(a0, a1, a2, b0, b1, b2, scale + reach, out.fromA, out.errorA);
+}
+
+/// The squared distances of the vertex-to-triangle and edge-to-edge features that the planes do
+/// not put beyond `limit` go to `visit`, vertices first. `limit` is read before each feature, so a
+/// visitor that lowers it culls the rest; a visitor returning true stops the walk (and the walk
+/// returns true). A skipped feature's true distance exceeds `limit` by more than any rounding, so
+/// its computed value does too.
+template <class Visit>
+bool visitFeaturesWithin(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2,
+                         const FacingPlanes &planes, const double &limit, Visit &&visit)
+{
     const Vec3 *a[3] = {&a0, &a1, &a2}, *b[3] = {&b0, &b1, &b2};
     for (int i = 0; i < 3; ++i)
     {
-        if (std::abs(fromB[i]) - errorB <= bound &&
-            std::sqrt((*a[i] - closestPointOnTriangle(*a[i], b0, b1, b2)).squaredNorm()) <= bound)
+        if (std::abs(planes.fromB[i]) - planes.errorB <= limit &&
+            visit((*a[i] - closestPointOnTriangle(*a[i], b0, b1, b2)).squaredNorm()))
             return true;
-        if (std::abs(fromA[i]) - errorA <= bound &&
-            std::sqrt((*b[i] - closestPointOnTriangle(*b[i], a0, a1, a2)).squaredNorm()) <= bound)
+        if (std::abs(planes.fromA[i]) - planes.errorA <= limit &&
+            visit((*b[i] - closestPointOnTriangle(*b[i], a0, a1, a2)).squaredNorm()))
             return true;
     }
     for (int i = 0; i < 3; ++i)
     {
-        const double gapA = segmentPlaneGap(fromB[i], fromB[(i + 1) % 3]) - errorB;
+        const double gapA = segmentPlaneGap(planes.fromB[i], planes.fromB[(i + 1) % 3]) - planes.errorB;
         for (int j = 0; j < 3; ++j)
-            if (std::max(gapA, segmentPlaneGap(fromA[j], fromA[(j + 1) % 3]) - errorA) <= bound &&
-                std::sqrt(segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3])) <= bound)
+            if (std::max(gapA, segmentPlaneGap(planes.fromA[j], planes.fromA[(j + 1) % 3]) - planes.errorA) <= limit &&
+                visit(segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3])))
                 return true;
     }
     return false;
@@ -201,9 +221,7 @@ bool someFeatureWithin(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec
 double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                                      const Vec3 &b2, double best)
 {
-    double scale = 0.0;
-    for (const Vec3 *v : {&a0, &a1, &a2, &b0, &b1, &b2})
-        scale = std::max(scale, v->cwiseAbs().maxCoeff());
+    const double scale = magnitudeOf(a0, a1, a2, b0, b1, b2);
     // Without a bound yet, a0's distance to B is one: it is among the candidates, and the other
     // fourteen are then culled against it.
     if (best == std::numeric_limits<double>::infinity())
@@ -212,37 +230,20 @@ double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 
         if (first < std::numeric_limits<double>::infinity())
             best = first;  // (not when non-finite: the full minimum below decides then)
     }
-    double fromB[3], fromA[3], errorB = 0.0, errorA = 0.0;  // A's vertices from B's plane and B's from A's
-    if (!(best < std::numeric_limits<double>::infinity()) ||
-        !planeDistances(b0, b1, b2, a0, a1, a2, scale + best, fromB, errorB) ||
-        !planeDistances(a0, a1, a2, b0, b1, b2, scale + best, fromA, errorA))
+    FacingPlanes planes;
+    if (!(best < std::numeric_limits<double>::infinity()) || !facingPlanes(a0, a1, a2, b0, b1, b2, scale, best, planes))
         return std::min(best, disjointTriangleDistance(a0, a1, a2, b0, b1, b2));
-    // A skipped candidate's true distance exceeds `limit` by more than any rounding, so its computed
-    // value is above the best one kept: the minimum is the same number.
+    // Features beyond the best kept so far are skipped: the minimum is the same number.
     double limit = best;
     double bestSquared = std::numeric_limits<double>::infinity();
-    const auto keep = [&](double squared) {
+    visitFeaturesWithin(a0, a1, a2, b0, b1, b2, planes, limit, [&](double squared) {
         if (squared < bestSquared)
         {
             bestSquared = squared;
             limit = std::min(limit, std::sqrt(squared));
         }
-    };
-    const Vec3 *a[3] = {&a0, &a1, &a2}, *b[3] = {&b0, &b1, &b2};
-    for (int i = 0; i < 3; ++i)
-    {
-        if (std::abs(fromB[i]) - errorB <= limit)
-            keep((*a[i] - closestPointOnTriangle(*a[i], b0, b1, b2)).squaredNorm());
-        if (std::abs(fromA[i]) - errorA <= limit)
-            keep((*b[i] - closestPointOnTriangle(*b[i], a0, a1, a2)).squaredNorm());
-    }
-    for (int i = 0; i < 3; ++i)
-    {
-        const double gapA = segmentPlaneGap(fromB[i], fromB[(i + 1) % 3]) - errorB;
-        for (int j = 0; j < 3; ++j)
-            if (std::max(gapA, segmentPlaneGap(fromA[j], fromA[(j + 1) % 3]) - errorA) <= limit)
-                keep(segmentSegmentDistanceSquared(*a[i], *a[(i + 1) % 3], *b[j], *b[(j + 1) % 3]));
-    }
+        return false;
+    });
     return std::min(best, std::sqrt(bestSquared));
 }
 
@@ -253,17 +254,17 @@ bool trianglesWithinDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, con
     //    own value may fall below the true distance by a few ulps of the coordinates, so the gap
     //    must clear the bound by that much too for the answers to agree.
     const double gap = std::max(planeGap(a0, a1, a2, b0, b1, b2), planeGap(b0, b1, b2, a0, a1, a2));
-    if (gap > bound)
-    {
-        double scale = 0.0;
-        for (const Vec3 *v : {&a0, &a1, &a2, &b0, &b1, &b2})
-            scale = std::max(scale, v->cwiseAbs().maxCoeff());
-        if (gap - 64.0 * std::numeric_limits<double>::epsilon() * scale > bound)
-            return false;
-    }
+    const double scale = magnitudeOf(a0, a1, a2, b0, b1, b2);
+    if (gap > bound && gap - 64.0 * std::numeric_limits<double>::epsilon() * scale > bound)
+        return false;
     // 2. Two points of the triangles within the bound (the vertex and edge distances are distances
-    //    between points of the triangles, so never below the true one).
-    if (someFeatureWithin(a0, a1, a2, b0, b1, b2, bound))
+    //    between points of the triangles, so never below the true one): the first feature within
+    //    it decides, and features the planes put beyond it are skipped.
+    const auto within = [bound](double squared) { return std::sqrt(squared) <= bound; };
+    FacingPlanes planes;
+    const bool culled = bound >= 0.0 && facingPlanes(a0, a1, a2, b0, b1, b2, scale, bound, planes);
+    if (culled ? visitFeaturesWithin(a0, a1, a2, b0, b1, b2, planes, bound, within)
+               : within(disjointTriangleDistanceSquared(a0, a1, a2, b0, b1, b2)))
         return true;
     // 3. Otherwise only an intersection (distance 0) puts them within; none is possible when one
     //    triangle lies certainly on one side of the other's plane (a positive gap, as orient3d has it).

@@ -358,27 +358,10 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             }
             continue;
         }
-        // Like trees: both nodes at once (see the constructor).
-        if (lockstep_ && !rn.isLeaf() && !en.isLeaf())
-        {
-            stack.push({std::uint32_t(rn.firstChild + 1), std::uint32_t(en.firstChild + 1)});
-            stack.push({std::uint32_t(rn.firstChild + 1), std::uint32_t(en.firstChild)});
-            stack.push({std::uint32_t(rn.firstChild), std::uint32_t(en.firstChild + 1)});
-            stack.push({std::uint32_t(rn.firstChild), std::uint32_t(en.firstChild)});
-            continue;
-        }
-        // Split the node whose box is larger (by its largest extent); leaves cannot be split.
-        const bool splitRobot = en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius);
-        if (splitRobot)
-        {
-            stack.push({std::uint32_t(rn.firstChild + 1), pair.environment});
-            stack.push({std::uint32_t(rn.firstChild), pair.environment});
-        }
-        else
-        {
-            stack.push({pair.robot, std::uint32_t(en.firstChild + 1)});
-            stack.push({pair.robot, std::uint32_t(en.firstChild)});
-        }
+        // Pushed last first, so that the first child pair comes off the stack first.
+        NodePair children[4];
+        for (int k = childPairs(pair, children) - 1; k >= 0; --k)
+            stack.push(children[k]);
     }
     record();
     return hit;
@@ -398,6 +381,33 @@ std::vector<ContactPair> VolumeTreeChecker<Volume>::doContacts(const RigidTransf
             c.environmentElement = environmentFaces_.source(c.environmentElement);
         }
     return found;
+}
+
+template <class Volume>
+int VolumeTreeChecker<Volume>::childPairs(const NodePair &pair, NodePair *children) const
+{
+    const typename VolumeTree<Volume>::Node &rn = robotTree_.nodes()[pair.robot];
+    const typename VolumeTree<Volume>::Node &en = environmentTree_.nodes()[pair.environment];
+    if (lockstep_ && !rn.isLeaf() && !en.isLeaf())
+    {
+        // Like trees: both nodes at once (see the constructor).
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j)
+                children[2 * i + j] = {std::uint32_t(rn.firstChild + i), std::uint32_t(en.firstChild + j)};
+        return 4;
+    }
+    // The node with the larger circumscribed sphere (the robot's when the environment's is a leaf).
+    if (en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius))
+    {
+        children[0] = {std::uint32_t(rn.firstChild), pair.environment};
+        children[1] = {std::uint32_t(rn.firstChild + 1), pair.environment};
+    }
+    else
+    {
+        children[0] = {pair.robot, std::uint32_t(en.firstChild)};
+        children[1] = {pair.robot, std::uint32_t(en.firstChild + 1)};
+    }
+    return 2;
 }
 
 template <class Volume>
@@ -476,29 +486,7 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
                                      env, environmentTree_.triangleOrder().data() + en.firstTriangle, en.triangleCount,
                                      best, triangleTests);
     };
-    // The larger node is split (the robot's when the environment's is a leaf), or both in lockstep.
-    const auto split = [&](const NodePair &p, NodePair *children) {
-        const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
-        const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
-        if (lockstep_ && !rn.isLeaf() && !en.isLeaf())
-        {
-            for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 2; ++j)
-                    children[2 * i + j] = {std::uint32_t(rn.firstChild + i), std::uint32_t(en.firstChild + j)};
-            return 4;
-        }
-        if (en.isLeaf() || (!rn.isLeaf() && rn.radius >= en.radius))
-        {
-            children[0] = {std::uint32_t(rn.firstChild), p.environment};
-            children[1] = {std::uint32_t(rn.firstChild + 1), p.environment};
-        }
-        else
-        {
-            children[0] = {p.robot, std::uint32_t(en.firstChild)};
-            children[1] = {p.robot, std::uint32_t(en.firstChild + 1)};
-        }
-        return 2;
-    };
+    const auto split = [&](const NodePair &p, NodePair *children) { return childPairs(p, children); };
     const double best =
         bestFirstDistance(context.scratch<NearestPairQueue>(), lowerBound, isLeafPair, leafDistance, split);
     context.stats.boundingVolumeTests += boxTests;

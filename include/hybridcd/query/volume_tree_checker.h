@@ -5,6 +5,7 @@
 #include "hybridcd/bvh/volume_tree.h"
 #include "hybridcd/narrowphase/convex_decomposition.h"
 #include "hybridcd/query/collision_checker.h"
+#include "hybridcd/query/traversal_stack.h"
 
 #include <optional>
 
@@ -94,6 +95,9 @@ private:
                        std::vector<ContactPair> *found = nullptr, std::size_t limit = 0,
                        std::vector<TrianglePair> *near = nullptr) const;
     double toleranceFor(const RigidTransform &worldFromRobot) const;
+    /// The child pairs of a pair that is not two leaves, in the order to visit them (the larger
+    /// node's children, or all four in lockstep); returns their number.
+    int childPairs(const NodePair &pair, NodePair *children) const;
     /// The leaf test of every pair query: whether robot triangle rt, placed as `a`, and environment
     /// triangle et touch (no proximity: the exact intersection test) or come within the slack at
     /// rt's reach (proximity), after an exact axis-aligned reject; `tests` counts the exact tests.
