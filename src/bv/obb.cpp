@@ -81,17 +81,20 @@ bool obbsOverlap(const Obb &a, const RigidTransform &worldFromA, const Obb &b, d
 
 bool obbsOverlap(const Obb &a, const Obb &b, double tolerance)
 {
-    // Express a's axes and centre in b's box frame: R = B^T A, t = B^T (ca - cb).
-    const Mat3 r = b.axes.transpose() * a.axes;
+    // Express a's axes and centre in b's box frame: R = B^T A, t = B^T (ca - cb), R row by row, as
+    // b's face axes need them: a pair most often separates along one of those, before the rest of
+    // R is needed.
     const Vec3 t = b.axes.transpose() * (a.center - b.center);
-    // The small constant keeps near-parallel edge-cross axes (which degenerate) conservative.
-    const Mat3 absR = r.cwiseAbs().array() + 1e-12;
     const Vec3 &ea = a.halfExtents, &eb = b.halfExtents;
-
-    // b's face axes.
+    Mat3 r, absR;
     for (int i = 0; i < 3; ++i)
+    {
+        r.row(i) = b.axes.col(i).transpose() * a.axes;
+        // The small constant keeps near-parallel edge-cross axes (which degenerate) conservative.
+        absR.row(i) = r.row(i).cwiseAbs().array() + 1e-12;
         if (std::fabs(t[i]) > eb[i] + absR.row(i).dot(ea) + tolerance)
-            return false;
+            return false;  // b's face axis i
+    }
     // a's face axes.
     for (int j = 0; j < 3; ++j)
         if (std::fabs(t.dot(r.col(j))) > ea[j] + absR.col(j).dot(eb) + tolerance)
