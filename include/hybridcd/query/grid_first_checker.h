@@ -68,6 +68,9 @@ public:
                     double radialSlack = 0.0) const;
     bool collidingByGrid(const RigidTransform &worldFromRobot) const;
     bool collidingByWitness(const RigidTransform &worldFromRobot) const;
+    /// collidingByWitness, tried only while it pays in this context (ProofOdds): false proves
+    /// nothing.
+    bool collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
 
     /// The footprint grid's cells in a planar scene, else the 3D grid's. A planar scene's proofs
     /// fall back to the coarser 3D grid for poses that are not planar and for sweeps of the robot's
