@@ -363,11 +363,25 @@ bool GridFirstChecker::collidingByWitnessWhilePaying(const RigidTransform &world
     // Among the poses the grid leaves undecided, the witness pair finds the contact for 75-88% on
     // Apartment, Maze_planar and BugTrap_planar, but for 2-11% on cubicles, Easy, Twistycool, Home,
     // bugtrap and Abstract, where a miss (every cover sphere's kept triangle tested) costs more
-    // than the hits save (bench/README.md, section 1, "The witness pair while it pays").
-    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this);
+    // than the hits save (bench/README.md, section 1, "Optional proofs while they pay").
+    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kWitnessPairProof);
     if (!odds.worthTrying())
         return false;
     const bool hit = collidingByWitness(worldFromRobot);
+    odds.record(hit);
+    return hit;
+}
+
+bool GridFirstChecker::collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const
+{
+    // Among the poses the grid does not prove free, a point inside a solid proves 40-85% colliding
+    // on cubicles, Easy, Twistycool, Home, bugtrap, Abstract and Maze_planar, but none on
+    // Apartment, alpha-1.5 and BugTrap_planar, where a try costs up to 0.7 us (bench/README.md,
+    // section 1, "Optional proofs while they pay").
+    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kPointInSolidProof);
+    if (!odds.worthTrying())
+        return false;
+    const bool hit = collidingByGrid(worldFromRobot);
     odds.record(hit);
     return hit;
 }
@@ -376,7 +390,7 @@ bool GridFirstChecker::doCollides(const RigidTransform &worldFromRobot, QueryCon
 {
     if (freeByGrid(worldFromRobot))
         return false;
-    if (collidingByGrid(worldFromRobot) || collidingByWitnessWhilePaying(worldFromRobot, context))
+    if (collidingByGridWhilePaying(worldFromRobot, context) || collidingByWitnessWhilePaying(worldFromRobot, context))
         return true;
     return exact_->collides(worldFromRobot, context);
 }
@@ -386,7 +400,7 @@ double GridFirstChecker::doDistance(const RigidTransform &worldFromRobot, QueryC
     // The grid's proofs decide most poses; a proved-free one skips the exact checker's own collision pass.
     if (freeByGrid(worldFromRobot))
         return exact_->distanceOfFreePose(worldFromRobot, context);
-    if (collidingByGrid(worldFromRobot) || collidingByWitnessWhilePaying(worldFromRobot, context))
+    if (collidingByGridWhilePaying(worldFromRobot, context) || collidingByWitnessWhilePaying(worldFromRobot, context))
         return 0.0;
     return exact_->distance(worldFromRobot, context);
 }

@@ -68,8 +68,9 @@ public:
                     double radialSlack = 0.0) const;
     bool collidingByGrid(const RigidTransform &worldFromRobot) const;
     bool collidingByWitness(const RigidTransform &worldFromRobot) const;
-    /// collidingByWitness, tried only while it pays in this context (ProofOdds): false proves
-    /// nothing.
+    /// collidingByGrid and collidingByWitness, each tried only while it pays in this context
+    /// (ProofOdds): false proves nothing.
+    bool collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
     bool collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
 
     /// The footprint grid's cells in a planar scene, else the 3D grid's. A planar scene's proofs
@@ -81,6 +82,8 @@ public:
     }
 
 private:
+    /// The optional proofs' tallies in a context (ProofOddsByChecker).
+    static constexpr int kPointInSolidProof = 0, kWitnessPairProof = 1;
     /// Fills leafStart_ and leafTriangles_ from cover_ and robot_.
     void indexLeafTriangles();
     /// For a planar scene: the footprint grid, the robot's footprint cover and its component probes.

@@ -48,31 +48,33 @@ private:
     std::uint32_t tries_ = 1, hits_ = 1, skipped_ = 0;
 };
 
-/// One ProofOdds per checker (by address) in a context: a context may serve several checkers.
+/// One ProofOdds per checker (by address) and proof (a small number of the checker's choosing) in
+/// a context: a context may serve several checkers.
 class ProofOddsByChecker
 {
 public:
-    ProofOdds &of(const void *checker)
+    ProofOdds &of(const void *checker, int proof = 0)
     {
         for (Entry &e : entries_)
-            if (e.checker == checker)
+            if (e.checker == checker && e.proof == proof)
                 return e.odds;
         // A handful of checkers per context at most; beyond that the oldest entry is reused.
         if (entries_.size() < kEntries)
         {
-            entries_.push_back({checker, {}});
+            entries_.push_back({checker, proof, {}});
             return entries_.back().odds;
         }
         Entry &reused = entries_[next_++ % kEntries];
-        reused = {checker, {}};
+        reused = {checker, proof, {}};
         return reused.odds;
     }
 
 private:
-    static constexpr std::size_t kEntries = 8;
+    static constexpr std::size_t kEntries = 16;
     struct Entry
     {
         const void *checker;
+        int proof;
         ProofOdds odds;
     };
     std::vector<Entry> entries_;
