@@ -358,30 +358,26 @@ bool GridFirstChecker::collidingByWitness(const RigidTransform &worldFromRobot) 
     return false;
 }
 
-bool GridFirstChecker::collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const
+bool GridFirstChecker::collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
-    // Among the poses the grid leaves undecided, the witness pair finds the contact for 75-88% on
-    // Apartment, Maze_planar and BugTrap_planar, but for 2-11% on cubicles, Easy, Twistycool, Home,
-    // bugtrap and Abstract, where a miss (every cover sphere's kept triangle tested) costs more
-    // than the hits save (bench/README.md, section 1, "Optional proofs while they pay").
-    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kWitnessPairProof);
-    if (!odds.worthTrying())
+    // Whether a point lies inside a solid depends on the problem: on some it settles most poses the
+    // grid leaves undecided, on others none, at a cost a miss then wastes (bench/README.md, section
+    // 1, "Optional proofs while they pay").
+    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kPointInSolidProof);
+    if (!odds.tryNow())
         return false;
-    const bool hit = collidingByWitness(worldFromRobot);
+    const bool hit = collidingByGrid(worldFromRobot);
     odds.record(hit);
     return hit;
 }
 
-bool GridFirstChecker::collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const
+bool GridFirstChecker::collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
-    // Among the poses the grid does not prove free, a point inside a solid proves 40-85% colliding
-    // on cubicles, Easy, Twistycool, Home, bugtrap, Abstract and Maze_planar, but none on
-    // Apartment, alpha-1.5 and BugTrap_planar, where a try costs up to 0.7 us (bench/README.md,
-    // section 1, "Optional proofs while they pay").
-    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kPointInSolidProof);
-    if (!odds.worthTrying())
+    // The same for the witness pair: a miss tests every cover sphere's kept triangle.
+    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kWitnessPairProof);
+    if (!odds.tryNow())
         return false;
-    const bool hit = collidingByGrid(worldFromRobot);
+    const bool hit = collidingByWitness(worldFromRobot);
     odds.record(hit);
     return hit;
 }

@@ -44,6 +44,8 @@ struct GridFirstSettings
 ///   whose centre falls in an occupied cell, the environment triangle kept for that cell is tested
 ///   exactly (trianglesIntersect, on the corners as every checker places them) against the robot
 ///   triangles of that leaf whose vertices are not all on one side of its plane.
+/// The two proofs of a collision are optional: each is tried only while it has paid lately in the
+/// query's context (ProofOdds), since on some problems one seldom or never decides.
 /// Everything else goes to the wrapped checker, which sets the answer, so answers are the wrapped
 /// checker's whatever the grid says (tested against bruteforce). Proximity queries use the same
 /// proof with each sphere grown by the slack. Distance: 0 on a proved collision; on a proved-free pose
@@ -68,10 +70,6 @@ public:
                     double radialSlack = 0.0) const;
     bool collidingByGrid(const RigidTransform &worldFromRobot) const;
     bool collidingByWitness(const RigidTransform &worldFromRobot) const;
-    /// collidingByGrid and collidingByWitness, each tried only while it pays in this context
-    /// (ProofOdds): false proves nothing.
-    bool collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
-    bool collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
 
     /// The footprint grid's cells in a planar scene, else the 3D grid's. A planar scene's proofs
     /// fall back to the coarser 3D grid for poses that are not planar and for sweeps of the robot's
@@ -84,6 +82,10 @@ public:
 private:
     /// The optional proofs' tallies in a context (ProofOddsByChecker).
     static constexpr int kPointInSolidProof = 0, kWitnessPairProof = 1;
+    /// collidingByGrid and collidingByWitness, each tried only while it pays in this context
+    /// (ProofOdds): false proves nothing.
+    bool collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
+    bool collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
     /// Fills leafStart_ and leafTriangles_ from cover_ and robot_.
     void indexLeafTriangles();
     /// For a planar scene: the footprint grid, the robot's footprint cover and its component probes.

@@ -3,18 +3,19 @@
 // QueryContext, it lets a checker skip a proof that seldom decides on this stream's poses.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <unordered_map>
 
 namespace hcd
 {
 /// Tries and successes of one proof in one stream. An optional proof (one that, when it fails,
 /// leaves the answer to an exact test that follows) is worth trying while at least one try in
-/// kMinimumRate succeeds, and once every kExploreEvery skips otherwise, so that a stream whose
-/// poses change is noticed. A fresh tally counts one success, so a stream is not judged on its
-/// first try; older tries weigh half once kWindow have been counted. Skipping a proof never changes
-/// an answer, only its cost.
+/// kMinimumRate succeeds; otherwise it is tried on one query in kExploreEvery, so that a stream
+/// whose poses change is noticed. A fresh tally counts one success, so a stream is not judged on
+/// its first try; older tries weigh half once kWindow have been counted. Skipping a proof never
+/// changes an answer, only its cost.
 class ProofOdds
 {
 public:
@@ -22,8 +23,8 @@ public:
     static constexpr std::uint32_t kExploreEvery = 16;
     static constexpr std::uint32_t kWindow = 32;
 
-    /// Whether to try the proof now (counts a skip when not).
-    bool worthTrying()
+    /// Whether this query tries the proof (a query that does not counts towards the next sample).
+    bool tryNow()
     {
         if (hits_ * kMinimumRate >= tries_ || ++skipped_ >= kExploreEvery)
         {
@@ -40,7 +41,7 @@ public:
         if (tries_ >= kWindow)
         {
             tries_ /= 2;
-            hits_ /= 2;
+            hits_ = (hits_ + 1) / 2;  // rounded up: one recent success is not lost
         }
     }
 
@@ -48,36 +49,32 @@ private:
     std::uint32_t tries_ = 1, hits_ = 1, skipped_ = 0;
 };
 
-/// One ProofOdds per checker (by address) and proof (a small number of the checker's choosing) in
-/// a context: a context may serve several checkers.
+/// The tallies of one context, per checker (by address) and per proof (an index below kProofs of
+/// the checker's choosing). A scene of many bodies queries one checker per pair of meshes through
+/// one context, so the table holds them all; it starts afresh beyond kMaxCheckers (a context that
+/// outlives many checkers), which only costs the tallies.
 class ProofOddsByChecker
 {
 public:
-    ProofOdds &of(const void *checker, int proof = 0)
+    static constexpr int kProofs = 2;
+    static constexpr std::size_t kMaxCheckers = 4096;
+
+    ProofOdds &of(const void *checker, int proof)
     {
-        for (Entry &e : entries_)
-            if (e.checker == checker && e.proof == proof)
-                return e.odds;
-        // A handful of checkers per context at most; beyond that the oldest entry is reused.
-        if (entries_.size() < kEntries)
+        // Most streams query one checker: its tallies are kept at hand (map nodes do not move).
+        if (checker != last_ || !lastTallies_)
         {
-            entries_.push_back({checker, proof, {}});
-            return entries_.back().odds;
+            if (tallies_.size() >= kMaxCheckers && tallies_.find(checker) == tallies_.end())
+                tallies_.clear();
+            lastTallies_ = &tallies_[checker];
+            last_ = checker;
         }
-        Entry &reused = entries_[next_++ % kEntries];
-        reused = {checker, proof, {}};
-        return reused.odds;
+        return (*lastTallies_)[std::size_t(proof)];
     }
 
 private:
-    static constexpr std::size_t kEntries = 16;
-    struct Entry
-    {
-        const void *checker;
-        int proof;
-        ProofOdds odds;
-    };
-    std::vector<Entry> entries_;
-    std::size_t next_ = 0;
+    std::unordered_map<const void *, std::array<ProofOdds, kProofs>> tallies_;
+    const void *last_ = nullptr;
+    std::array<ProofOdds, kProofs> *lastTallies_ = nullptr;
 };
 }  // namespace hcd
