@@ -358,35 +358,21 @@ bool GridFirstChecker::collidingByWitness(const RigidTransform &worldFromRobot) 
     return false;
 }
 
-bool GridFirstChecker::collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const
+bool GridFirstChecker::collidingByOptionalProofs(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
-    // Whether a point lies inside a solid depends on the problem: on some it settles most poses the
-    // grid leaves undecided, on others none, at a cost a miss then wastes (bench/README.md, section
-    // 1, "Optional proofs while they pay").
-    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kPointInSolidProof);
-    if (!odds.tryNow())
-        return false;
-    const bool hit = collidingByGrid(worldFromRobot);
-    odds.record(hit);
-    return hit;
-}
-
-bool GridFirstChecker::collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const
-{
-    // The same for the witness pair: a miss tests every cover sphere's kept triangle.
-    ProofOdds &odds = context.scratch<ProofOddsByChecker>().of(this, kWitnessPairProof);
-    if (!odds.tryNow())
-        return false;
-    const bool hit = collidingByWitness(worldFromRobot);
-    odds.record(hit);
-    return hit;
+    // How often each proof settles the poses the grid leaves undecided depends on the problem: on
+    // some most, on others none, at a cost each miss wastes (the witness pair tests every cover
+    // sphere's kept triangle; bench/README.md, section 1, "Optional proofs while they pay").
+    ProofOddsByChecker::Tallies &odds = context.scratch<ProofOddsByChecker>().of(this);
+    return odds[kPointInSolidProof].attempt([&] { return collidingByGrid(worldFromRobot); }) ||
+           odds[kWitnessPairProof].attempt([&] { return collidingByWitness(worldFromRobot); });
 }
 
 bool GridFirstChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
     if (freeByGrid(worldFromRobot))
         return false;
-    if (collidingByGridWhilePaying(worldFromRobot, context) || collidingByWitnessWhilePaying(worldFromRobot, context))
+    if (collidingByOptionalProofs(worldFromRobot, context))
         return true;
     return exact_->collides(worldFromRobot, context);
 }
@@ -396,7 +382,7 @@ double GridFirstChecker::doDistance(const RigidTransform &worldFromRobot, QueryC
     // The grid's proofs decide most poses; a proved-free one skips the exact checker's own collision pass.
     if (freeByGrid(worldFromRobot))
         return exact_->distanceOfFreePose(worldFromRobot, context);
-    if (collidingByGridWhilePaying(worldFromRobot, context) || collidingByWitnessWhilePaying(worldFromRobot, context))
+    if (collidingByOptionalProofs(worldFromRobot, context))
         return 0.0;
     return exact_->distance(worldFromRobot, context);
 }

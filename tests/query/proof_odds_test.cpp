@@ -19,8 +19,7 @@ int run(ProofOdds &odds, int queries, Succeeds succeeds)
 {
     int tried = 0;
     for (int i = 0; i < queries; ++i)
-        if (odds.tryNow())
-            odds.record(succeeds(tried++));
+        odds.attempt([&] { return succeeds(tried++); });
     return tried;
 }
 
@@ -61,14 +60,12 @@ TEST(ProofOdds, ReopensSoonAfterTheProofPaysAgain)
     int firstOfTriedRun = -1, triedRun = 0;
     for (int query = 0; query < 20 * kExplore && triedRun < 50; ++query)
     {
-        if (odds.tryNow())
-        {
-            odds.record(true);
-            if (triedRun++ == 0)
-                firstOfTriedRun = query;
-        }
-        else
+        bool tried = false;
+        odds.attempt([&] { return tried = true; });
+        if (!tried)
             triedRun = 0;
+        else if (triedRun++ == 0)
+            firstOfTriedRun = query;
     }
     EXPECT_EQ(triedRun, 50);
     EXPECT_LE(firstOfTriedRun, 14 * kExplore);
@@ -86,18 +83,14 @@ TEST(ProofOdds, KeepsOneTallyPerCheckerAndProofForManyCheckers)
     for (int round = 0; round < rounds; ++round)
         for (std::size_t c = 0; c < checkers.size(); ++c)
         {
-            ProofOdds &failing = table.of(&checkers[c], 0);
-            if (failing.tryNow())
-            {
+            table.of(&checkers[c])[0].attempt([&] {
                 ++triedFailing[c];
-                failing.record(false);
-            }
-            ProofOdds &paying = table.of(&checkers[c], 1);
-            if (paying.tryNow())
-            {
+                return false;
+            });
+            table.of(&checkers[c])[1].attempt([&] {
                 ++triedPaying[c];
-                paying.record(true);
-            }
+                return true;
+            });
         }
     for (std::size_t c = 0; c < checkers.size(); ++c)
     {
@@ -111,12 +104,11 @@ TEST(ProofOdds, ATableOfManyCheckersStartsAfreshRatherThanGrowingWithoutBound)
     ProofOddsByChecker table;
     std::vector<int> checkers(ProofOddsByChecker::kMaxCheckers + 1);
     // The first checker's proof fails until its tally is closed: at most one try in 15 queries.
-    ProofOdds &first = table.of(&checkers[0], 0);
-    run(first, 64, [](int) { return false; });
-    EXPECT_LE(run(table.of(&checkers[0], 0), kExplore - 1, [](int) { return false; }), 1);
+    run(table.of(&checkers[0])[0], 64, [](int) { return false; });
+    EXPECT_LE(run(table.of(&checkers[0])[0], kExplore - 1, [](int) { return false; }), 1);
     // Every other checker once; the last one is one more than the table holds.
     for (std::size_t c = 1; c < checkers.size(); ++c)
-        table.of(&checkers[c], 0);
+        table.of(&checkers[c]);
     // The table started afresh: the first checker's tally is a fresh one, which tries again.
-    EXPECT_GE(run(table.of(&checkers[0], 0), kExplore - 1, [](int) { return false; }), 3);
+    EXPECT_GE(run(table.of(&checkers[0])[0], kExplore - 1, [](int) { return false; }), 3);
 }

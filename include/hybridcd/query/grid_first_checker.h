@@ -81,11 +81,10 @@ public:
 
 private:
     /// The optional proofs' tallies in a context (ProofOddsByChecker).
-    static constexpr int kPointInSolidProof = 0, kWitnessPairProof = 1;
-    /// collidingByGrid and collidingByWitness, each tried only while it pays in this context
+    static constexpr std::size_t kPointInSolidProof = 0, kWitnessPairProof = 1;
+    /// collidingByGrid, then collidingByWitness, each tried only while it pays in this context
     /// (ProofOdds): false proves nothing.
-    bool collidingByGridWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
-    bool collidingByWitnessWhilePaying(const RigidTransform &worldFromRobot, QueryContext &context) const;
+    bool collidingByOptionalProofs(const RigidTransform &worldFromRobot, QueryContext &context) const;
     /// Fills leafStart_ and leafTriangles_ from cover_ and robot_.
     void indexLeafTriangles();
     /// For a planar scene: the footprint grid, the robot's footprint cover and its component probes.

@@ -23,6 +23,19 @@ public:
     static constexpr std::uint32_t kExploreEvery = 16;
     static constexpr std::uint32_t kWindow = 32;
 
+    /// Runs `proof` (a callable returning whether it succeeded) when it is worth trying now, and
+    /// counts the outcome; false when skipped, which proves nothing.
+    template <class Proof>
+    bool attempt(Proof &&proof)
+    {
+        if (!tryNow())
+            return false;
+        const bool success = proof();
+        record(success);
+        return success;
+    }
+
+private:
     /// Whether this query tries the proof (a query that does not counts towards the next sample).
     bool tryNow()
     {
@@ -33,7 +46,7 @@ public:
         }
         return false;
     }
-    /// Counts a try and whether it succeeded.
+    /// Counts a try and whether it succeeded; older tries weigh half once kWindow have been counted.
     void record(bool success)
     {
         ++tries_;
@@ -45,21 +58,21 @@ public:
         }
     }
 
-private:
     std::uint32_t tries_ = 1, hits_ = 1, skipped_ = 0;
 };
 
-/// The tallies of one context, per checker (by address) and per proof (an index below kProofs of
+/// The tallies of one context, per checker (by address), one per proof (an index below kProofs of
 /// the checker's choosing). A scene of many bodies queries one checker per pair of meshes through
 /// one context, so the table holds them all; it starts afresh beyond kMaxCheckers (a context that
 /// outlives many checkers), which only costs the tallies.
 class ProofOddsByChecker
 {
 public:
-    static constexpr int kProofs = 2;
+    static constexpr std::size_t kProofs = 2;
     static constexpr std::size_t kMaxCheckers = 4096;
+    using Tallies = std::array<ProofOdds, kProofs>;
 
-    ProofOdds &of(const void *checker, int proof)
+    Tallies &of(const void *checker)
     {
         // Most streams query one checker: its tallies are kept at hand (map nodes do not move).
         if (checker != last_ || !lastTallies_)
@@ -69,12 +82,12 @@ public:
             lastTallies_ = &tallies_[checker];
             last_ = checker;
         }
-        return (*lastTallies_)[std::size_t(proof)];
+        return *lastTallies_;
     }
 
 private:
-    std::unordered_map<const void *, std::array<ProofOdds, kProofs>> tallies_;
+    std::unordered_map<const void *, Tallies> tallies_;
     const void *last_ = nullptr;
-    std::array<ProofOdds, kProofs> *lastTallies_ = nullptr;
+    Tallies *lastTallies_ = nullptr;
 };
 }  // namespace hcd
