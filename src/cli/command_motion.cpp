@@ -17,6 +17,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace hcd::cli
@@ -24,24 +25,44 @@ namespace hcd::cli
 void declareCheckMotion(CommandLine &cl)
 {
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
-        .option("motions", "FILE", "two poses per line, start then end (required)")
+        .option("motions", "FILE", "two poses per line, start then end (this or --path)")
+        .option("path", "FILE", "a path, one state per line (.path format): the motions between consecutive states")
         .option("contact-tolerance", "FRACTION",
                 "bracket the first contact to this fraction of the motion, in (0, 1] (default 1e-6)")
         .flag("verdict-only", "only 1 or 0 per motion, stopping at the first contact seen (as a planner checks)");
     addCheckerOptions(cl, false);
     cl.footer(R"(
-Prints 1 (free) or 0 T per motion, T the last free fraction before contact.
+Prints 1 (free) or 0 T per motion, T the last free fraction before contact. With --path, stderr
+also names the first motion of the path that is not free, with its two lines.
 For a scene problem (robot.K, obstacle.K) each state holds every robot's pose, robot 1 first.
 Examples:
   hybridcd check-motion problems/window_3d.cfg --motions motions.txt
   hybridcd check-motion problems/window_3d.cfg --motions motions.txt --verdict-only
+  hybridcd check-motion problems/window_3d.cfg --path window_3d.solution.path --verdict-only
 )");
 }
 
+namespace
+{
+/// What a path's motions came to, on stderr: free throughout, or the first motion that is not.
+void reportPath(const std::string &path, const std::vector<std::pair<PoseRecord, PoseRecord>> &motions,
+                std::optional<std::size_t> firstBlocked)
+{
+    if (!firstBlocked)
+    {
+        std::cerr << "path " << path << ": every one of its " << motions.size() << " motions is free\n";
+        return;
+    }
+    const auto &[from, to] = motions[*firstBlocked];
+    std::cerr << "path " << path << ": motion " << *firstBlocked + 1 << " of " << motions.size() << " (lines "
+              << from.line << "-" << to.line << ") is not free\n";
+}
+}  // namespace
+
 int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
 {
-    if (!cl.has("motions"))
-        throw UsageError("check-motion needs --motions FILE");
+    if (cl.has("motions") == cl.has("path"))
+        throw UsageError("check-motion needs one of --motions FILE and --path FILE");
     // A fraction of the motion: zero would bisect without end, more than 1 says nothing.
     const double contactTolerance = cl.positiveNumber("contact-tolerance", 1e-6);
     if (contactTolerance > 1.0)
@@ -50,9 +71,19 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
+    const bool onPath = cl.has("path");
+    const std::string input = cl.text(onPath ? "path" : "motions", "");
+    const std::size_t robots = problem.config.isScene() ? problem.config.robotCount() : 1;
+    const auto motions = onPath ? readPathMotions(input, problem.config.planar, robots)
+                                : readMotions(input, problem.config.planar, robots);
     if (problem.config.isScene())
-        return runSceneCheckMotion(problem, cl.text("motions", ""), checkerName, options, cl.has("verdict-only"));
-    const auto motions = readMotions(cl.text("motions", ""), problem.config.planar);
+    {
+        const std::optional<std::size_t> firstBlocked =
+            runSceneCheckMotion(problem, motions, checkerName, options, cl.has("verdict-only"));
+        if (onPath)
+            reportPath(input, motions, firstBlocked);
+        return kSuccess;
+    }
     PlanningProblem planning =
         makePlanningProblem(problem, checkers.make(checkerName, problem.scene, options), MotionCheck::Continuous);
     const auto si = planning.setup->getSpaceInformation();
@@ -67,23 +98,24 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     std::ostringstream out;
     out << std::setprecision(std::numeric_limits<double>::max_digits10);
     std::size_t free = 0;
+    std::optional<std::size_t> firstBlocked;
     const auto start = std::chrono::steady_clock::now();
-    for (const auto &[from, to] : motions)
+    for (std::size_t i = 0; i < motions.size(); ++i)
     {
-        poseValuesToState(from.values.data(), problem.config.planar, a);
-        poseValuesToState(to.values.data(), problem.config.planar, b);
+        poseValuesToState(motions[i].first.values.data(), problem.config.planar, a);
+        poseValuesToState(motions[i].second.values.data(), problem.config.planar, b);
         std::pair<ompl::base::State *, double> lastValid{last, 0.0};
-        if (verdictOnly)
-        {
-            const bool isFree = validator->checkMotion(a, b);
-            free += isFree ? 1 : 0;
-            out << (isFree ? "1\n" : "0\n");
-        }
-        else if (validator->checkMotion(a, b, lastValid))
+        const bool isFree = verdictOnly ? validator->checkMotion(a, b) : validator->checkMotion(a, b, lastValid);
+        if (isFree)
         {
             ++free;
             out << "1\n";
+            continue;
         }
+        if (!firstBlocked)
+            firstBlocked = i;
+        if (verdictOnly)
+            out << "0\n";
         else
             out << "0 " << lastValid.second << '\n';
     }
@@ -95,6 +127,8 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     std::cerr << "checked " << motions.size() << " motions with '" << checkerName << "': " << free << " free, "
               << motions.size() - free << " colliding; mean "
               << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion\n";
+    if (onPath)
+        reportPath(input, motions, firstBlocked);
     return kSuccess;
 }
 

@@ -124,19 +124,22 @@ int runSceneClearance(const LoadedProblem &problem, const std::string &statesPat
     return 0;
 }
 
-int runSceneCheckMotion(const LoadedProblem &problem, const std::string &motionsPath, const std::string &checkerName,
-                        const CheckerOptions &options, bool verdictOnly)
+std::optional<std::size_t> runSceneCheckMotion(const LoadedProblem &problem,
+                                               const std::vector<std::pair<PoseRecord, PoseRecord>> &motions,
+                                               const std::string &checkerName, const CheckerOptions &options,
+                                               bool verdictOnly)
 {
     const ProblemConfig &config = problem.config;
-    const auto motions = readMotions(motionsPath, config.planar, config.robotCount());
+    std::optional<std::size_t> firstBlocked;
     const auto scene = makeProblemScene(problem, sceneOptionsOf(checkerName, options));
     std::ostringstream out;
     out << std::setprecision(std::numeric_limits<double>::max_digits10);
     QueryContext context;
     std::size_t free = 0, lpPairs = 0, distances = 0;
     const auto start = Clock::now();
-    for (const auto &[from, to] : motions)
+    for (std::size_t i = 0; i < motions.size(); ++i)
     {
+        const auto &[from, to] = motions[i];
         SceneMotionOptions motionOptions;
         motionOptions.verdictOnly = verdictOnly;
         const SceneMotionResult result = checkSceneMotion(*scene, posesOfLine(from.values, config),
@@ -147,8 +150,11 @@ int runSceneCheckMotion(const LoadedProblem &problem, const std::string &motions
         {
             ++free;
             out << "1\n";
+            continue;
         }
-        else if (verdictOnly)
+        if (!firstBlocked)
+            firstBlocked = i;
+        if (verdictOnly)
             out << "0\n";
         else
             out << "0 " << result.lastValidTime << '\n';
@@ -159,7 +165,7 @@ int runSceneCheckMotion(const LoadedProblem &problem, const std::string &motions
               << motions.size() - free << " colliding; mean "
               << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion (" << distances
               << " distance queries, " << lpPairs << " pairs by the time-augmented LP)\n";
-    return 0;
+    return firstBlocked;
 }
 
 int runSceneSolve(const LoadedProblem &problem, const SceneSolveRun &run)

@@ -3,10 +3,12 @@
 // for one robot, with every robot's pose on each line.
 #pragma once
 
+#include "hybridcd/io/path_file.h"
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/scene/scene.h"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,9 +29,12 @@ int runSceneCheck(const LoadedProblem &problem, const std::string &statesPath, c
 /// `clearance`: the smallest distance over the checked pairs per line (0 when touching).
 int runSceneClearance(const LoadedProblem &problem, const std::string &statesPath, const std::string &checkerName,
                       const CheckerOptions &options);
-/// `check-motion`: 1, or 0 and the last valid fraction, per line of two states.
-int runSceneCheckMotion(const LoadedProblem &problem, const std::string &motionsPath, const std::string &checkerName,
-                        const CheckerOptions &options, bool verdictOnly);
+/// `check-motion`: 1, or 0 and the last valid fraction, per motion (two states of every robot's
+/// pose); returns the index of the first motion that is not free, if any.
+std::optional<std::size_t> runSceneCheckMotion(const LoadedProblem &problem,
+                                               const std::vector<std::pair<PoseRecord, PoseRecord>> &motions,
+                                               const std::string &checkerName, const CheckerOptions &options,
+                                               bool verdictOnly);
 
 struct SceneSolveRun
 {

@@ -133,6 +133,19 @@ std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view tex
     return motions;
 }
 
+std::vector<std::pair<PoseRecord, PoseRecord>> readPathMotions(const std::string &path, bool planar, std::size_t robots)
+{
+    std::vector<PoseRecord> states = readPoses(path, planar, robots);
+    if (states.size() < 2)
+        throw InputError(
+            path, 0, "a path needs at least two states, one per line (found " + std::to_string(states.size()) + ")");
+    std::vector<std::pair<PoseRecord, PoseRecord>> motions;
+    motions.reserve(states.size() - 1);
+    for (std::size_t i = 0; i + 1 < states.size(); ++i)
+        motions.emplace_back(states[i], states[i + 1]);
+    return motions;
+}
+
 void writePoses(std::ostream &out, const std::vector<std::vector<double>> &poses)
 {
     const auto old = out.precision(std::numeric_limits<double>::max_digits10);

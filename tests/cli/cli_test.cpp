@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -354,12 +355,87 @@ TEST(Cli, ClearanceAndCheckMotion)
     EXPECT_NE(verdict.output.find("us per motion"), std::string::npos) << verdict.output;
 }
 
+TEST(Cli, CheckMotionAlongAPathAgreesWithDenseBruteForceSampling)
+{
+    // A path of five states (a comment and a blank line in between): up beside the wall, through
+    // the window, down, and back straight through the wall. Rotations stay the identity, so the
+    // motions are straight lines and their samples need no interpolation of rotations.
+    const std::vector<std::array<double, 3>> states = {
+        {-26, -10, 12}, {-26, 0, 25}, {26, 0, 25}, {26, -10, 12}, {-26, -10, 12}};
+    const std::vector<int> lines = {2, 3, 5, 6, 7};
+    std::ostringstream text;
+    text << "# a window path\n";
+    for (std::size_t i = 0; i < states.size(); ++i)
+    {
+        if (i == 2)
+            text << "\n";
+        text << states[i][0] << ' ' << states[i][1] << ' ' << states[i][2] << " 0 0 0 1\n";
+    }
+    const std::string path = test::writeTempFile("window.path", text.str());
+    const CliRun r = run("check-motion " + problem3d() + " --path " + path + " 2>/dev/null");
+    ASSERT_EQ(r.status, 0) << r.output;
+    // The reference: 2,001 states along each motion, checked one by one with the brute-force checker.
+    std::ostringstream samples;
+    constexpr int kSamples = 2000;
+    for (std::size_t m = 0; m + 1 < states.size(); ++m)
+        for (int k = 0; k <= kSamples; ++k)
+        {
+            const double t = double(k) / kSamples;
+            for (int c = 0; c < 3; ++c)
+                samples << states[m][c] + t * (states[m + 1][c] - states[m][c]) << ' ';
+            samples << "0 0 0 1\n";
+        }
+    const std::string sampled = test::writeTempFile("window_samples.path", samples.str());
+    const CliRun reference = run("check " + problem3d() + " --states " + sampled + " --checker bruteforce 2>/dev/null");
+    ASSERT_EQ(reference.status, 0) << reference.output;
+    std::istringstream verdicts(reference.output), motions(r.output);
+    std::size_t firstBlocked = states.size();
+    for (std::size_t m = 0; m + 1 < states.size(); ++m)
+    {
+        bool sampledFree = true;
+        for (int k = 0; k <= kSamples; ++k)
+        {
+            int v = -1;
+            verdicts >> v;
+            ASSERT_TRUE(v == 0 || v == 1) << reference.output;
+            sampledFree = sampledFree && v == 1;
+        }
+        int verdict = -1;
+        motions >> verdict;
+        ASSERT_TRUE(verdict == 0 || verdict == 1) << r.output;
+        EXPECT_EQ(verdict == 1, sampledFree) << "motion " << m + 1;
+        if (verdict == 0)
+        {
+            double lastFree = -1.0;
+            motions >> lastFree;
+            EXPECT_GE(lastFree, 0.0);
+            EXPECT_LT(lastFree, 1.0);
+            firstBlocked = std::min(firstBlocked, m);
+        }
+    }
+    // The last motion crosses the dividing wall; stderr names it with its two lines.
+    ASSERT_EQ(firstBlocked, states.size() - 2) << r.output;
+    const CliRun summary = run("check-motion " + problem3d() + " --path " + path + " --verdict-only 2>&1");
+    ASSERT_EQ(summary.status, 0) << summary.output;
+    const std::string named = "motion " + std::to_string(firstBlocked + 1) + " of 4 (lines " +
+                              std::to_string(lines[firstBlocked]) + "-" + std::to_string(lines[firstBlocked + 1]) +
+                              ") is not free";
+    EXPECT_NE(summary.output.find(named), std::string::npos) << summary.output;
+    // The free part alone: every motion free.
+    const std::string freePath =
+        test::writeTempFile("window_free.path", "-26 -10 12 0 0 0 1\n-26 0 25 0 0 0 1\n26 0 25 0 0 0 1\n");
+    const CliRun free = run("check-motion " + problem3d() + " --path " + freePath + " 2>&1");
+    ASSERT_EQ(free.status, 0) << free.output;
+    EXPECT_EQ(free.output.substr(0, 4), "1\n1\n") << free.output;
+    EXPECT_NE(free.output.find("every one of its 2 motions is free"), std::string::npos) << free.output;
+}
+
 TEST(Cli, EveryCommandHasHelpWithItsOptionsAndExamples)
 {
     const std::map<std::string, std::vector<std::string>> commands = {
         {"solve", {"--planner", "--time", "--seed", "--out", "--param", "--motion", "--verbose"}},
         {"check", {"--states"}},
-        {"check-motion", {"--motions", "--contact-tolerance", "--verdict-only"}},
+        {"check-motion", {"--motions", "--path", "--contact-tolerance", "--verdict-only"}},
         {"clearance", {"--states"}},
         {"contacts", {"--states", "--limit"}},
         {"inspect", {"--level", "--export"}},
@@ -545,6 +621,11 @@ TEST(Cli, SceneCommandsTakeEveryRobotsPosePerLine)
     EXPECT_LE(t, 13.0 / 30.0);
     EXPECT_GE(t, 13.0 / 30.0 - 1e-5);
     EXPECT_EQ(second, 1);
+    // The states as a path: the first motion drives robot 2 into the wall, and stderr names it.
+    const CliRun path = run("check-motion " + cfg + " --path " + states + " --verdict-only 2>&1");
+    ASSERT_EQ(path.status, 0) << path.output;
+    EXPECT_EQ(path.output.substr(0, 4), "0\n0\n") << path.output;
+    EXPECT_NE(path.output.find("motion 1 of 2 (lines 1-2) is not free"), std::string::npos) << path.output;
     // A line with the poses of too few robots names the file and line.
     const std::string shortLine = test::writeTempFile("scene_short.txt", "-15 -8 0 -15 8 0 15 0 0\n1 2 3 4 5 6\n");
     const CliRun bad = run("check " + cfg + " --states " + shortLine);

@@ -41,6 +41,41 @@ TEST(PathFile, FileAndTextReadersAgree)
     EXPECT_EQ(motions[0].second.values, (std::vector<double>{1, 2, 3}));
 }
 
+TEST(PathFile, PathMotionsJoinConsecutiveStatesAndKeepTheirLines)
+{
+    // Three planar states with a comment and a blank line: two motions, each state's line kept; a
+    // scene's lines hold every robot's pose.
+    const std::string path = test::writeTempFile("motions.path", "1 2 3\n# turn\n\n4 5 6\n7 8 9\n");
+    const auto motions = readPathMotions(path, true);
+    ASSERT_EQ(motions.size(), 2u);
+    EXPECT_EQ(motions[0].first.values, (std::vector<double>{1, 2, 3}));
+    EXPECT_EQ(motions[0].second.values, (std::vector<double>{4, 5, 6}));
+    EXPECT_EQ(motions[1].first.values, motions[0].second.values);
+    EXPECT_EQ(motions[1].second.values, (std::vector<double>{7, 8, 9}));
+    EXPECT_EQ(motions[0].first.line, 1);
+    EXPECT_EQ(motions[0].second.line, 4);
+    EXPECT_EQ(motions[1].second.line, 5);
+    const std::string scene = test::writeTempFile("scene.path", "1 2 3 4 5 6\n7 8 9 10 11 12\n");
+    const auto sceneMotions = readPathMotions(scene, true, 2);
+    ASSERT_EQ(sceneMotions.size(), 1u);
+    EXPECT_EQ(sceneMotions[0].second.values.size(), 6u);
+    // Fewer than two states: no motion to check, an error naming the file.
+    for (const char *text : {"", "# nothing\n", "1 2 3\n"})
+    {
+        const std::string shortPath = test::writeTempFile("short.path", text);
+        try
+        {
+            readPathMotions(shortPath, true);
+            FAIL() << "no error for '" << text << "'";
+        }
+        catch (const InputError &e)
+        {
+            EXPECT_NE(std::string(e.what()).find(shortPath + ": a path needs at least two states"), std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 TEST(PathFile, ErrorsNameTheSourceAndLine)
 {
     try

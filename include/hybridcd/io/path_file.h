@@ -40,6 +40,12 @@ std::vector<std::pair<PoseRecord, PoseRecord>> readMotions(const std::string &pa
 std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view text, const std::string &sourceName,
                                                             bool planar, std::size_t robots = 1);
 
+/// Reads a path (one state per line, as readPoses does) as the motions between consecutive states:
+/// each motion's two records keep their own lines. Throws InputError("FILE: ...") when the file
+/// holds fewer than two states, and as readPoses does otherwise.
+std::vector<std::pair<PoseRecord, PoseRecord>> readPathMotions(const std::string &path, bool planar,
+                                                               std::size_t robots = 1);
+
 /// Writes one pose per line with full round-trip precision.
 void writePoses(std::ostream &out, const std::vector<std::vector<double>> &poses);
 }  // namespace hcd
