@@ -64,7 +64,7 @@ missing_meshes() {
 # (exit 1). Kinodynamic paths (extra columns: velocities, controls) are checked pose by pose; their
 # trajectories between rows were certified when they were planned.
 verify_path() {
-  local cfg=$1 path=$2 kinodynamic=$3 verdicts poses bad motions columns
+  local cfg=$1 path=$2 kinodynamic=$3 verdicts poses bad motions
   verdicts=$("$cli" check "$cfg" --states "$path" 2>/dev/null) || { echo "hybridcd check refused the path"; return 1; }
   poses=$(echo "$verdicts" | grep -c .)
   bad=$(echo "$verdicts" | grep -vc '^1$')
@@ -74,15 +74,9 @@ verify_path() {
     echo "$poses poses collision-free"
     return 0
   fi
-  # Consecutive poses as one motion per line: the pose columns of line i, then of line i + 1.
-  columns=$(grep -v '^[[:space:]]*#' "$path" | grep -m 1 . | wc -w)
-  grep -v '^[[:space:]]*\(#\|$\)' "$path" | awk -v n="$columns" \
-    '{ line = $1; for (i = 2; i <= n; ++i) line = line " " $i; if (NR > 1) print prev " " line; prev = line }' \
-    >"$out/.motions.$$"
-  motions=$("$cli" check-motion "$cfg" --motions "$out/.motions.$$" --verdict-only 2>/dev/null)
-  local status=$?
-  rm -f "$out/.motions.$$"
-  [ $status -eq 0 ] || { echo "hybridcd check-motion refused the path"; return 1; }
+  # Every motion between consecutive poses.
+  motions=$("$cli" check-motion "$cfg" --path "$path" --verdict-only 2>/dev/null) ||
+    { echo "hybridcd check-motion refused the path"; return 1; }
   bad=$(echo "$motions" | grep -vc '^1$')
   [ "$bad" -eq 0 ] || { echo "$bad of $((poses - 1)) motions touch the environment"; return 1; }
   echo "$poses poses and $((poses - 1)) motions collision-free"

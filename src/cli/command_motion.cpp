@@ -3,6 +3,7 @@
 #include "command_line.h"
 #include "command_scene.h"
 #include "commands.h"
+#include "motion_verdicts.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/path_file.h"
@@ -17,6 +18,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -44,13 +46,48 @@ Examples:
 
 namespace
 {
+/// check-motion for one robot: returns the index of the first motion that is not free, if any.
+std::optional<std::size_t> checkRobotMotions(const LoadedProblem &problem,
+                                             const std::vector<std::pair<PoseRecord, PoseRecord>> &motions,
+                                             std::unique_ptr<CollisionChecker> checker, const std::string &checkerName,
+                                             double contactTolerance, bool verdictOnly)
+{
+    PlanningProblem planning = makePlanningProblem(problem, std::move(checker), MotionCheck::Continuous);
+    const auto si = planning.setup->getSpaceInformation();
+    ContinuousMotionValidator *validator = planning.continuousValidator.get();
+    validator->setContactTolerance(contactTolerance);
+    validator->setApplyBounds(false);  // as in `check`, only collisions decide
+    ompl::base::State *a = si->allocState(), *b = si->allocState(), *last = si->allocState();
+    MotionVerdicts verdicts(verdictOnly);
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < motions.size(); ++i)
+    {
+        poseValuesToState(motions[i].first.values.data(), problem.config.planar, a);
+        poseValuesToState(motions[i].second.values.data(), problem.config.planar, b);
+        std::pair<ompl::base::State *, double> lastValid{last, 0.0};
+        // Verdict only: OMPL's two-state checkMotion, which stops at the first contact it sees and
+        // never brackets it (what a planner pays for a motion it does not extend along).
+        const bool free = verdictOnly ? validator->checkMotion(a, b) : validator->checkMotion(a, b, lastValid);
+        verdicts.add(i, free, lastValid.second);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    si->freeState(a);
+    si->freeState(b);
+    si->freeState(last);
+    verdicts.print(checkerName, seconds);
+    return verdicts.firstBlocked();
+}
+
 /// What a path's motions came to, on stderr: free throughout, or the first motion that is not.
 void reportPath(const std::string &path, const std::vector<std::pair<PoseRecord, PoseRecord>> &motions,
                 std::optional<std::size_t> firstBlocked)
 {
     if (!firstBlocked)
     {
-        std::cerr << "path " << path << ": every one of its " << motions.size() << " motions is free\n";
+        std::cerr << "path " << path << ": "
+                  << (motions.size() == 1 ? std::string("its one motion is free")
+                                          : "all " + std::to_string(motions.size()) + " motions are free")
+                  << '\n';
         return;
     }
     const auto &[from, to] = motions[*firstBlocked];
@@ -61,8 +98,10 @@ void reportPath(const std::string &path, const std::vector<std::pair<PoseRecord,
 
 int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
 {
-    if (cl.has("motions") == cl.has("path"))
-        throw UsageError("check-motion needs one of --motions FILE and --path FILE");
+    if (cl.has("motions") && cl.has("path"))
+        throw UsageError("check-motion takes --motions FILE or --path FILE, not both");
+    if (!cl.has("motions") && !cl.has("path"))
+        throw UsageError("check-motion needs --motions FILE or --path FILE");
     // A fraction of the motion: zero would bisect without end, more than 1 says nothing.
     const double contactTolerance = cl.positiveNumber("contact-tolerance", 1e-6);
     if (contactTolerance > 1.0)
@@ -76,57 +115,12 @@ int runCheckMotion(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::size_t robots = problem.config.isScene() ? problem.config.robotCount() : 1;
     const auto motions = onPath ? readPathMotions(input, problem.config.planar, robots)
                                 : readMotions(input, problem.config.planar, robots);
-    if (problem.config.isScene())
-    {
-        const std::optional<std::size_t> firstBlocked =
-            runSceneCheckMotion(problem, motions, checkerName, options, cl.has("verdict-only"));
-        if (onPath)
-            reportPath(input, motions, firstBlocked);
-        return kSuccess;
-    }
-    PlanningProblem planning =
-        makePlanningProblem(problem, checkers.make(checkerName, problem.scene, options), MotionCheck::Continuous);
-    const auto si = planning.setup->getSpaceInformation();
-    ContinuousMotionValidator *validator = planning.continuousValidator.get();
-    validator->setContactTolerance(contactTolerance);
-    validator->setApplyBounds(false);  // as in `check`, only collisions decide
-    // Verdict only: OMPL's two-state checkMotion, which stops at the first contact it sees and
-    // never brackets it (what a planner pays for a motion it does not extend along).
     const bool verdictOnly = cl.has("verdict-only");
-
-    ompl::base::State *a = si->allocState(), *b = si->allocState(), *last = si->allocState();
-    std::ostringstream out;
-    out << std::setprecision(std::numeric_limits<double>::max_digits10);
-    std::size_t free = 0;
-    std::optional<std::size_t> firstBlocked;
-    const auto start = std::chrono::steady_clock::now();
-    for (std::size_t i = 0; i < motions.size(); ++i)
-    {
-        poseValuesToState(motions[i].first.values.data(), problem.config.planar, a);
-        poseValuesToState(motions[i].second.values.data(), problem.config.planar, b);
-        std::pair<ompl::base::State *, double> lastValid{last, 0.0};
-        const bool isFree = verdictOnly ? validator->checkMotion(a, b) : validator->checkMotion(a, b, lastValid);
-        if (isFree)
-        {
-            ++free;
-            out << "1\n";
-            continue;
-        }
-        if (!firstBlocked)
-            firstBlocked = i;
-        if (verdictOnly)
-            out << "0\n";
-        else
-            out << "0 " << lastValid.second << '\n';
-    }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    si->freeState(a);
-    si->freeState(b);
-    si->freeState(last);
-    std::cout << out.str() << std::flush;
-    std::cerr << "checked " << motions.size() << " motions with '" << checkerName << "': " << free << " free, "
-              << motions.size() - free << " colliding; mean "
-              << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion\n";
+    const std::optional<std::size_t> firstBlocked =
+        problem.config.isScene()
+            ? runSceneCheckMotion(problem, motions, checkerName, options, verdictOnly)
+            : checkRobotMotions(problem, motions, checkers.make(checkerName, problem.scene, options), checkerName,
+                                contactTolerance, verdictOnly);
     if (onPath)
         reportPath(input, motions, firstBlocked);
     return kSuccess;

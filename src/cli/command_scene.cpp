@@ -2,6 +2,7 @@
 // check, check-motion, clearance and solve on scene problems (several robots, obstacles of their
 // own): every robot's pose on each line, robot 1 first (README, "Scenes of many bodies").
 #include "command_scene.h"
+#include "motion_verdicts.h"
 
 #include "problem_checks.h"
 
@@ -130,12 +131,10 @@ std::optional<std::size_t> runSceneCheckMotion(const LoadedProblem &problem,
                                                bool verdictOnly)
 {
     const ProblemConfig &config = problem.config;
-    std::optional<std::size_t> firstBlocked;
     const auto scene = makeProblemScene(problem, sceneOptionsOf(checkerName, options));
-    std::ostringstream out;
-    out << std::setprecision(std::numeric_limits<double>::max_digits10);
+    MotionVerdicts verdicts(verdictOnly);
     QueryContext context;
-    std::size_t free = 0, lpPairs = 0, distances = 0;
+    std::size_t lpPairs = 0, distances = 0;
     const auto start = Clock::now();
     for (std::size_t i = 0; i < motions.size(); ++i)
     {
@@ -146,26 +145,12 @@ std::optional<std::size_t> runSceneCheckMotion(const LoadedProblem &problem,
                                                           posesOfLine(to.values, config), context, motionOptions);
         lpPairs += result.lpPairs;
         distances += result.distanceQueries;
-        if (result.valid)
-        {
-            ++free;
-            out << "1\n";
-            continue;
-        }
-        if (!firstBlocked)
-            firstBlocked = i;
-        if (verdictOnly)
-            out << "0\n";
-        else
-            out << "0 " << result.lastValidTime << '\n';
+        verdicts.add(i, result.valid, result.lastValidTime);
     }
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    std::cout << out.str() << std::flush;
-    std::cerr << "checked " << motions.size() << " motions with '" << checkerName << "': " << free << " free, "
-              << motions.size() - free << " colliding; mean "
-              << (motions.empty() ? 0.0 : 1e6 * seconds / double(motions.size())) << " us per motion (" << distances
-              << " distance queries, " << lpPairs << " pairs by the time-augmented LP)\n";
-    return firstBlocked;
+    verdicts.print(checkerName, std::chrono::duration<double>(Clock::now() - start).count(),
+                   " (" + std::to_string(distances) + " distance queries, " + std::to_string(lpPairs) +
+                       " pairs by the time-augmented LP)");
+    return verdicts.firstBlocked();
 }
 
 int runSceneSolve(const LoadedProblem &problem, const SceneSolveRun &run)

@@ -133,9 +133,43 @@ std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view tex
     return motions;
 }
 
+namespace
+{
+/// Whether every non-blank line of `text` (comments removed) holds exactly `count` words.
+bool everyLineHolds(std::string_view text, std::size_t count)
+{
+    std::istringstream in{std::string(text)};
+    std::string line;
+    bool any = false;
+    while (std::getline(in, line))
+    {
+        line.erase(std::min(line.size(), line.find('#')));
+        std::istringstream words(line);
+        std::size_t n = 0;
+        for (std::string word; words >> word;)
+            ++n;
+        if (n == 0)
+            continue;
+        if (n != count)
+            return false;
+        any = true;
+    }
+    return any;
+}
+}  // namespace
+
 std::vector<std::pair<PoseRecord, PoseRecord>> readPathMotions(const std::string &path, bool planar, std::size_t robots)
 {
-    std::vector<PoseRecord> states = readPoses(path, planar, robots);
+    const std::string text = readText(path);
+    std::vector<PoseRecord> states = parsePoses(text, path, planar, robots);
+    // Columns after a state are ignored, so a motions file would read as the first state of each
+    // line, silently: a file whose every line holds two states' worth of numbers is refused.
+    const std::size_t stateColumns = poseColumns(planar) * std::max<std::size_t>(robots, 1);
+    if (!states.empty() && everyLineHolds(text, 2 * stateColumns))
+        throw InputError(path, states.front().line,
+                         "every line holds two states (" + std::to_string(2 * stateColumns) +
+                             " numbers), as a motions file does: a path holds one state per line "
+                             "(check-motion --motions reads start-end pairs)");
     if (states.size() < 2)
         throw InputError(
             path, 0, "a path needs at least two states, one per line (found " + std::to_string(states.size()) + ")");

@@ -59,6 +59,21 @@ TEST(PathFile, PathMotionsJoinConsecutiveStatesAndKeepTheirLines)
     const auto sceneMotions = readPathMotions(scene, true, 2);
     ASSERT_EQ(sceneMotions.size(), 1u);
     EXPECT_EQ(sceneMotions[0].second.values.size(), 6u);
+    // A motions file (two states on every line) is refused, naming its first line; a path whose
+    // lines carry other columns after the state is read as usual.
+    const std::string pairs = test::writeTempFile("pairs.txt", "# pairs\n1 2 3 4 5 6\n7 8 9 10 11 12\n");
+    try
+    {
+        readPathMotions(pairs, true);
+        FAIL() << "a motions file read as a path";
+    }
+    catch (const InputError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find(pairs + ":2: every line holds two states (6 numbers)"), std::string::npos)
+            << e.what();
+    }
+    const std::string extra = test::writeTempFile("extra.path", "1 2 3 4 5 6 7\n7 8 9 10 11 12\n");
+    EXPECT_EQ(readPathMotions(extra, true).size(), 1u);
     // Fewer than two states: no motion to check, an error naming the file.
     for (const char *text : {"", "# nothing\n", "1 2 3\n"})
     {

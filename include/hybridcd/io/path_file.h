@@ -42,7 +42,8 @@ std::vector<std::pair<PoseRecord, PoseRecord>> parseMotions(std::string_view tex
 
 /// Reads a path (one state per line, as readPoses does) as the motions between consecutive states:
 /// each motion's two records keep their own lines. Throws InputError("FILE: ...") when the file
-/// holds fewer than two states, and as readPoses does otherwise.
+/// holds fewer than two states or when every line holds exactly two states (a motions file), and
+/// as readPoses does otherwise.
 std::vector<std::pair<PoseRecord, PoseRecord>> readPathMotions(const std::string &path, bool planar,
                                                                std::size_t robots = 1);
 
