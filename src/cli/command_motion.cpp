@@ -60,15 +60,15 @@ std::optional<std::size_t> checkRobotMotions(const LoadedProblem &problem,
     ompl::base::State *a = si->allocState(), *b = si->allocState(), *last = si->allocState();
     MotionVerdicts verdicts(verdictOnly);
     const auto start = std::chrono::steady_clock::now();
-    for (std::size_t i = 0; i < motions.size(); ++i)
+    for (const auto &[from, to] : motions)
     {
-        poseValuesToState(motions[i].first.values.data(), problem.config.planar, a);
-        poseValuesToState(motions[i].second.values.data(), problem.config.planar, b);
+        poseValuesToState(from.values.data(), problem.config.planar, a);
+        poseValuesToState(to.values.data(), problem.config.planar, b);
         std::pair<ompl::base::State *, double> lastValid{last, 0.0};
         // Verdict only: OMPL's two-state checkMotion, which stops at the first contact it sees and
         // never brackets it (what a planner pays for a motion it does not extend along).
         const bool free = verdictOnly ? validator->checkMotion(a, b) : validator->checkMotion(a, b, lastValid);
-        verdicts.add(i, free, lastValid.second);
+        verdicts.add(free, lastValid.second);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     si->freeState(a);

@@ -136,16 +136,15 @@ std::optional<std::size_t> runSceneCheckMotion(const LoadedProblem &problem,
     QueryContext context;
     std::size_t lpPairs = 0, distances = 0;
     const auto start = Clock::now();
-    for (std::size_t i = 0; i < motions.size(); ++i)
+    for (const auto &[from, to] : motions)
     {
-        const auto &[from, to] = motions[i];
         SceneMotionOptions motionOptions;
         motionOptions.verdictOnly = verdictOnly;
         const SceneMotionResult result = checkSceneMotion(*scene, posesOfLine(from.values, config),
                                                           posesOfLine(to.values, config), context, motionOptions);
         lpPairs += result.lpPairs;
         distances += result.distanceQueries;
-        verdicts.add(i, result.valid, result.lastValidTime);
+        verdicts.add(result.valid, result.lastValidTime);
     }
     verdicts.print(checkerName, std::chrono::duration<double>(Clock::now() - start).count(),
                    " (" + std::to_string(distances) + " distance queries, " + std::to_string(lpPairs) +

@@ -12,9 +12,9 @@ MotionVerdicts::MotionVerdicts(bool verdictOnly) : verdictOnly_(verdictOnly)
     lines_ << std::setprecision(std::numeric_limits<double>::max_digits10);
 }
 
-void MotionVerdicts::add(std::size_t index, bool free, double lastValid)
+void MotionVerdicts::add(bool free, double lastValid)
 {
-    ++motions_;
+    const std::size_t index = motions_++;
     if (free)
     {
         ++free_;

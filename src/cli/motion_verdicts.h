@@ -15,8 +15,8 @@ class MotionVerdicts
 {
 public:
     explicit MotionVerdicts(bool verdictOnly);
-    /// Motion `index` is free, or blocked with `[0, lastValid]` proven free.
-    void add(std::size_t index, bool free, double lastValid);
+    /// The next motion is free, or blocked with `[0, lastValid]` proven free.
+    void add(bool free, double lastValid);
     /// The lines on stdout, then "checked N motions with 'CHECKER': F free, C colliding; mean
     /// X us per motion" and `detail` (e.g. " (...)") on stderr.
     void print(const std::string &checkerName, double seconds, const std::string &detail = {}) const;
