@@ -13,7 +13,9 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=$(nproc)
-step() { echo "== hybridcd test: $*" >&2; }
+started=$(date +%s)
+# Each step says how long the run has taken so far (CI keeps the whole run under 30 minutes).
+step() { echo "== hybridcd test: $* ($(( $(date +%s) - started )) s in)" >&2; }
 
 step "release build and suite"
 bash "$root/scripts/build.sh" -DHYBRIDCD_BUILD_TESTS=ON -DHYBRIDCD_BUILD_BENCH=OFF

@@ -140,6 +140,7 @@ std::optional<std::size_t> runSceneCheckMotion(const LoadedProblem &problem,
     {
         SceneMotionOptions motionOptions;
         motionOptions.verdictOnly = verdictOnly;
+        motionOptions.planar = config.planar;
         const SceneMotionResult result = checkSceneMotion(*scene, posesOfLine(from.values, config),
                                                           posesOfLine(to.values, config), context, motionOptions);
         lpPairs += result.lpPairs;

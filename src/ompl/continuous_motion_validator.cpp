@@ -13,11 +13,36 @@ namespace hcd
 {
 namespace
 {
-// Rotation angle of R1^T R2 in [0, pi]: the angle OMPL's shortest-path interpolation sweeps.
-double rotationAngle(const Mat3 &r1, const Mat3 &r2)
+// How far OMPL's interpolation from s1 to s2 moves the robot per unit of tau: a robot point p (robot
+// frame) moves at most translation + angle * |p|. `endTurn` is the turn left between OMPL's state
+// at tau = 1 and s2 itself: SO3's interpolation keeps R1 to the end below about 9e-5 rad, so s2 is
+// reached by a turn of the whole angle that no interval sweeps; every interval's slack covers it.
+// Margins cover rounding in the bound: the lengths and angles are computed in floating point.
+struct MotionRates
 {
-    const double c = 0.5 * ((r1.transpose() * r2).trace() - 1.0);
-    return std::acos(std::clamp(c, -1.0, 1.0));
+    double translation = 0.0;  ///< world units per unit of tau
+    double angle = 0.0;        ///< radians per unit of tau
+    double endTurn = 0.0;      ///< radians, added to every interval's radial slack
+    bool bounded = false;      ///< false: non-finite states or quaternions off unit length
+};
+
+MotionRates motionRates(const ompl::base::StateSpacePtr &space, const ompl::base::State *s1,
+                        const ompl::base::State *s2, bool planar, ompl::base::State *scratch)
+{
+    MotionRates rates;
+    const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
+    const double turn = interpolationTurn(s1, s2, planar);
+    if (!p1.isFinite() || !p2.isFinite() || !std::isfinite(turn))
+        return rates;
+    space->interpolate(s1, s2, 1.0, scratch);
+    const double endTurn = interpolationTurn(scratch, s2, planar);
+    if (!std::isfinite(endTurn))
+        return rates;
+    rates.translation = (p2.translation - p1.translation).norm() * (1.0 + 1e-9);
+    rates.angle = turn * (1.0 + 1e-9) + 1e-14;
+    rates.endTurn = endTurn * (1.0 + 1e-9);
+    rates.bounded = std::isfinite(rates.translation);
+    return rates;
 }
 
 constexpr std::size_t kMaxQueries = 100000;          // beyond this a motion is refused rather than certified
@@ -280,7 +305,10 @@ bool ContinuousMotionValidator::finish(const Report &report, const ompl::base::S
     {
         if (lastValidFraction)
             *lastValidFraction = report.lastFree;
-        if (lastValidState)
+        // s1 itself at 0: no interpolation towards an s2 that may be refused as unbounded.
+        if (lastValidState && report.lastFree == 0.0)
+            si_->copyState(lastValidState, s1);
+        else if (lastValidState)
             si_->getStateSpace()->interpolate(s1, s2, report.lastFree, lastValidState);
     }
     return report.free;
@@ -315,6 +343,9 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
         return contact(0.0, 0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
+    const MotionRates rates = motionRates(space, s1, s2, planar, state);
+    if (!rates.bounded)
+        return report;  // refused, no contact
 
     // Without a known contact, a pass of collision checks at OMPL's resolution from s1 onwards: the
     // first contact then only needs to be searched for before the first colliding sample. With one
@@ -335,18 +366,8 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
             break;
         }
 
-    const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
-    // Per unit of tau a robot point p moves at most translationRate + angleRate * |p|.
-    const double translationRate = (p2.translation - p1.translation).norm() * (1.0 + 1e-9);
-    const double angleRate = rotationAngle(p1.rotation, p2.rotation) * (1.0 + 1e-9) + 1e-15;
+    const double translationRate = rates.translation, angleRate = rates.angle;
     const double speed = translationRate + robotRadius_ * angleRate;
-    if (!(speed > 0.0))
-    {
-        if (validity_->poseCollides(p2, *context))
-            return contact(0.0, 1.0);
-        report.free = true;
-        return report;
-    }
 
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
     // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
@@ -381,7 +402,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
             break;
         }
         const IntervalChecks::Outcome outcome =
-            checks.check(iv, pose, translationRate * half, angleRate * half, /*middleKnownFree=*/false);
+            checks.check(iv, pose, translationRate * half, angleRate * half + rates.endTurn, /*middleKnownFree=*/false);
         if (outcome.certified)
         {
             certified = iv.b;  // intervals are taken in order: the free prefix grows
@@ -466,6 +487,9 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         return contact(0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
+    const MotionRates rates = motionRates(space, s1, s2, planar, state);
+    if (!rates.bounded)
+        return report;  // refused, no contact
 
     // Raked collision checks: states on a dyadic grid of m + 1 points (about one per `kRakeStride`
     // of OMPL's samples) visited coarse to fine, the end first, then 1/2, 1/4, 3/4, 1/8, 5/8, ...
@@ -476,7 +500,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     while ((1u << bits) * kRakeStride < n && bits < 20)
         ++bits;
     const std::uint64_t m = std::uint64_t(1) << bits;
-    if (validity_->poseCollides(poseAt(1.0), *context))
+    // s2 itself, which OMPL's state at tau = 1 differs from by rates.endTurn.
+    if (validity_->poseCollides(poseOfState(s2, planar), *context))
         return contact(1.0);
     for (std::uint64_t i = 1; i < m; ++i)
     {
@@ -485,15 +510,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
             return contact(tau);
     }
 
-    const RigidTransform p2 = poseOfState(s2, planar);
-    const double translationRate = (p2.translation - p1.translation).norm() * (1.0 + 1e-9);
-    const double angleRate = rotationAngle(p1.rotation, p2.rotation) * (1.0 + 1e-9) + 1e-15;
+    const double translationRate = rates.translation, angleRate = rates.angle;
     const double speed = translationRate + robotRadius_ * angleRate;
-    if (!(speed > 0.0))
-    {
-        report.free = true;  // both ends were checked
-        return report;
-    }
 
     // Certification of the dyadic intervals between the raked states (or of groups of them), by
     // bisection with the swept-proximity query. A middle state that is a raked state is known to
@@ -513,8 +531,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         if (++queries > kMaxQueries)
             return report;  // refused
         const double onGrid = mid * double(m);
-        const IntervalChecks::Outcome outcome =
-            checks.check(iv, poseAt(mid), translationRate * half, angleRate * half, onGrid == std::floor(onGrid));
+        const IntervalChecks::Outcome outcome = checks.check(
+            iv, poseAt(mid), translationRate * half, angleRate * half + rates.endTurn, onGrid == std::floor(onGrid));
         if (outcome.certified)
             continue;
         if (outcome.colliding)

@@ -225,6 +225,7 @@ SceneMotionResult SceneMotionValidator::check(const ob::State *s1, const ob::Sta
     auto context = validity_->contexts().borrow();
     SceneMotionOptions options = options_;
     options.verdictOnly = verdictOnly;
+    options.planar = validity_->planar();
     return checkSceneMotion(scene, start, goal, *context, options);
 }
 

@@ -13,13 +13,23 @@ namespace hcd
 {
 namespace
 {
-// The angle of the rotation that takes `from` to `to` (radians, in [0, pi]).
+// The angle of the rotation that takes `from` to `to` (radians, in [0, pi]), by atan2, which stays
+// accurate for tiny angles where acos of a dot product rounds to zero.
 double rotationAngle(const Mat3 &from, const Mat3 &to)
 {
-    const Eigen::Quaterniond a(from), b(to);
-    const double dot = std::min(1.0, std::abs(a.normalized().dot(b.normalized())));
-    return 2.0 * std::acos(dot);
+    const Eigen::Quaterniond relative =
+        Eigen::Quaterniond(from).normalized().conjugate() * Eigen::Quaterniond(to).normalized();
+    return 2.0 * std::atan2(relative.vec().norm(), std::abs(relative.w()));
 }
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Below this turn OMPL's SO3 interpolation keeps the start rotation up to the end (about 9e-5 rad;
+// this leaves room), where this file's slerp turns: the two paths differ by up to the whole angle.
+constexpr double kHeldTurnBelow = 2e-4;
+// Within this of a half turn, which way OMPL turns (SO2 by the sign of the yaw difference, SO3 by
+// the sign of a dot product near zero) is decided by rounding, and may differ from this file's.
+constexpr double kHalfTurnWithin = 1e-9;
 
 // Per robot: how far it translates and turns over the whole motion.
 struct RobotSweep
@@ -27,8 +37,26 @@ struct RobotSweep
     Vec3 displacement = Vec3::Zero();  // dx, world units per unit t
     double translation = 0.0;          // |dx|
     double angle = 0.0;                // radians per unit t
+    // Radians by which OMPL's interpolation may be turned away from this file's at any t: the whole
+    // angle for turns OMPL keeps to the end or may take the other way round, else 0. Every robot
+    // point p then lies within offsetAngle * |p| of where it is placed here.
+    double offsetAngle = 0.0;
     bool rotates = false;
 };
+
+// How far OMPL's placement of the pair's bodies may lie from this file's at any t (world units).
+double pairOffset(const Scene &scene, const ScenePair &pair, const std::vector<RobotSweep> &sweeps)
+{
+    double offset = 0.0;
+    for (const std::uint32_t body : {pair.first, pair.second})
+    {
+        const SceneBody &b = scene.bodies()[body];
+        if (b.robot >= 0)
+            offset += sweeps[std::size_t(b.robot)].offsetAngle *
+                      (b.ownerFromBody.translation.norm() + b.geometry->boundingRadius()) * (1.0 + 1e-12);
+    }
+    return offset;
+}
 
 // Upper bound on how far any point of `body` moves per unit t.
 double bodySpeed(const Scene &scene, std::size_t body, const std::vector<RobotSweep> &sweeps)
@@ -146,7 +174,10 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
         sweeps[r].displacement = goal[r].translation - start[r].translation;
         sweeps[r].translation = sweeps[r].displacement.norm();
         sweeps[r].rotates = !(start[r].rotation == goal[r].rotation);
-        sweeps[r].angle = sweeps[r].rotates ? rotationAngle(start[r].rotation, goal[r].rotation) : 0.0;
+        sweeps[r].angle = sweeps[r].rotates ? rotationAngle(start[r].rotation, goal[r].rotation) * (1.0 + 1e-9) : 0.0;
+        if (sweeps[r].rotates &&
+            ((!options.planar && sweeps[r].angle < kHeldTurnBelow) || sweeps[r].angle > kPi - kHalfTurnWithin))
+            sweeps[r].offsetAngle = sweeps[r].angle;
     }
 
     // The earliest contact found so far: later pairs need only be advanced up to it. Every pair
@@ -212,7 +243,10 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
             continue;
         }
         const double speed = bodySpeed(scene, p.first, sweeps) + bodySpeed(scene, p.second, sweeps);
-        // safeUntil: up to when the pair is known to stay `validMargin` apart, a margin the narrow
+        // OMPL's placement may lie `offset` from the one measured here: every margin grows by it.
+        const double offset = pairOffset(scene, p, sweeps);
+        const double pairTolerance = tolerance + offset, pairValidMargin = validMargin + offset;
+        // safeUntil: up to when the pair is known to stay `pairValidMargin` apart, a margin the narrow
         // phase certifies with room to spare (its undecided band, near touching, is far thinner),
         // so that the state reported as last valid is checked free, not merely near.
         double t = 0.0, safeUntil = 0.0, lastStep = 0.0;
@@ -225,14 +259,14 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
             const double remaining = (1.0 - t) * speed;
             // The boxes' gap first: when it alone covers a good part of what is left, step on it.
             const double boxGap = scene.pairBoundsGap(pair, poses.data());
-            const double gap = boxGap - tolerance;
+            const double gap = boxGap - pairTolerance;
             if (gap > 0.0 && (gap >= remaining || gap >= 0.25 * remaining))
             {
                 ++result.boundSteps;
                 if (gap >= remaining)
                     break;
-                if (boxGap > validMargin)
-                    safeUntil = std::max(safeUntil, t + (boxGap - validMargin) / speed);
+                if (boxGap > pairValidMargin)
+                    safeUntil = std::max(safeUntil, t + (boxGap - pairValidMargin) / speed);
                 t += gap / speed;
                 continue;
             }
@@ -262,7 +296,7 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
             ++result.distanceQueries;
             Vec3 onFirst = Vec3::Constant(std::numeric_limits<double>::quiet_NaN()), onSecond = onFirst;
             const double distance = scene.pairDistanceBound(pair, poses.data(), context, &onFirst, &onSecond);
-            const double clearance = distance - tolerance;
+            const double clearance = distance - pairTolerance;
             if (clearance <= 0.0 || distanceSteps >= options.maxStepsPerPair)
             {
                 touches(pair, t, std::min(safeUntil, t));
@@ -279,23 +313,23 @@ SceneMotionResult checkSceneMotion(const Scene &scene, const std::vector<RigidTr
                                      second = scene.worldFromBody(p.second, poses.data());
                 const double gapAlong =
                     -scene.supportAlong(p.second, second, -n) - scene.supportAlong(p.first, first, n);
-                if (gapAlong > tolerance)
+                if (gapAlong > pairTolerance)
                 {
                     const double closing =
                         supportRate(scene, p.first, n, sweeps) + supportRate(scene, p.second, -n, sweeps);
                     if (closing <= 0.0)
                         break;  // the plane keeps them apart to the end
-                    directionalStep = (gapAlong - tolerance) / closing;
-                    if (gapAlong > validMargin)
-                        safeUntil = std::max(safeUntil, t + (gapAlong - validMargin) / closing);
+                    directionalStep = (gapAlong - pairTolerance) / closing;
+                    if (gapAlong > pairValidMargin)
+                        safeUntil = std::max(safeUntil, t + (gapAlong - pairValidMargin) / closing);
                     if (directionalStep >= 1.0 - t)
                         break;
                 }
             }
             if (clearance >= remaining)
                 break;
-            if (distance > validMargin)
-                safeUntil = std::max(safeUntil, t + (distance - validMargin) / speed);
+            if (distance > pairValidMargin)
+                safeUntil = std::max(safeUntil, t + (distance - pairValidMargin) / speed);
             lastStep = std::max(clearance / speed, directionalStep);
             t += lastStep;
         }

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace hcd;
 namespace ob = ompl::base;
@@ -140,6 +141,123 @@ TEST(MotionValidator, RotationAloneCannotSweepPastAPost)
     ASSERT_TRUE(report.contactFound);
     ASSERT_TRUE(report.blocked);
     EXPECT_LE(report.blockedAt - report.lastFree, 1e-6);
+}
+
+namespace
+{
+// Every state OMPL's interpolation visits at `samples` + 1 uniform fractions, and s2 itself, checked
+// by brute force: the first colliding fraction, 2 when none collides (s2 colliding counts as 1).
+double sampledFirstContact(const ob::SpaceInformationPtr &si, bool planar, const CollisionChecker &reference,
+                           const ob::State *s1, const ob::State *s2, int samples)
+{
+    ob::ScopedState<> s(si);
+    for (int k = 0; k <= samples; ++k)
+    {
+        si->getStateSpace()->interpolate(s1, s2, double(k) / samples, s.get());
+        if (reference.collides(poseOfState(s.get(), planar)))
+            return double(k) / samples;
+    }
+    return reference.collides(poseOfState(s2, planar)) ? 1.0 : 2.0;
+}
+}  // namespace
+
+// Below about 9e-5 rad OMPL's SO3 interpolation keeps the start rotation up to tau = 1, so that
+// s2 itself is the only state turned: a rod turning 8e-5 rad about its centre under a block 3e-5
+// above its tip ends inside it, and the motion must be refused; 1e-3 above, it is free.
+TEST(MotionValidator, TurnsTooSmallForSlerpStillReachTheEndState)
+{
+    const TriangleMesh rod = test::boxMesh(Vec3(-1.0, -0.05, -0.05), Vec3(1.0, 0.05, 0.05));
+    for (const double gap : {3e-5, 1e-3})
+    {
+        SCOPED_TRACE(gap);
+        const LoadedProblem problem = makeProblem(rod, test::boxMesh(Vec3(0.9, 0.05 + gap, -1.0), Vec3(1.0, 1.0, 1.0)));
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+        planning.setup->setup();
+        const auto si = planning.setup->getSpaceInformation();
+        const auto reference = makeChecker("bruteforce", problem.scene);
+        ob::ScopedState<> a(si), b(si), end(si);
+        setPose(a.get(), Vec3::Zero(), 0.0);
+        setPose(b.get(), Vec3::Zero(), 8e-5);
+        // OMPL's state at tau = 1 keeps a's rotation: the turn to b is left to b itself.
+        si->getStateSpace()->interpolate(a.get(), b.get(), 1.0, end.get());
+        ASSERT_TRUE(poseOfState(end.get(), false).rotation == poseOfState(a.get(), false).rotation);
+        ASSERT_FALSE(reference->collides(poseOfState(a.get(), false)));
+        const bool endCollides = reference->collides(poseOfState(b.get(), false));
+        ASSERT_EQ(endCollides, gap < 8e-5);
+        auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+        EXPECT_EQ(continuous.checkMotion(a.get(), b.get()), !endCollides);
+        std::pair<ob::State *, double> last{si->allocState(), 0.0};
+        EXPECT_EQ(continuous.checkMotion(a.get(), b.get(), last), !endCollides);
+        if (endCollides)
+            EXPECT_FALSE(reference->collides(poseOfState(last.first, false)));
+        si->freeState(last.first);
+    }
+}
+
+// A yaw change of 1e-8 turns a 2-long needle's tip by 1e-8, past a speck 1.5e-9 to 3.5e-9 above
+// it: acos of a rotation's trace rounds that angle to zero, the atan2 the validator uses does not.
+TEST(MotionValidator, TinyYawChangesKeepTheirWholeSweep)
+{
+    LoadedProblem problem = makeProblem(test::boxMesh(Vec3(-1.0, -1e-10, -0.5), Vec3(1.0, 1e-10, 0.5)),
+                                        test::boxMesh(Vec3(0.98, 1.5e-9, -0.5), Vec3(0.99, 3.5e-9, 0.5)));
+    problem.config.planar = true;
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    ob::ScopedState<> a(si), b(si);
+    int blocked = 0;
+    for (const double turn : {1e-8, -1e-8, 3e-8})
+    {
+        SCOPED_TRACE(turn);
+        a->as<ob::SE2StateSpace::StateType>()->setXY(0.0, 0.0);
+        a->as<ob::SE2StateSpace::StateType>()->setYaw(0.0);
+        b->as<ob::SE2StateSpace::StateType>()->setXY(0.0, 0.0);
+        b->as<ob::SE2StateSpace::StateType>()->setYaw(turn);
+        const double sampled = sampledFirstContact(si, true, *reference, a.get(), b.get(), 2000);
+        // Turning the other way (-1e-8) moves the tip away from the speck: free.
+        ASSERT_EQ(sampled <= 1.0, turn > 0.0);
+        const bool free = continuous.checkMotion(a.get(), b.get());
+        EXPECT_EQ(free, sampled > 1.0);
+        blocked += free ? 0 : 1;
+        std::pair<ob::State *, double> last{si->allocState(), 0.0};
+        if (!continuous.checkMotion(a.get(), b.get(), last))
+        {
+            EXPECT_LE(last.second, sampled);
+            EXPECT_FALSE(reference->collides(poseOfState(last.first, true)));
+        }
+        si->freeState(last.first);
+    }
+    EXPECT_EQ(blocked, 2);
+}
+
+// States no bound holds for are refused, never accepted: a non-finite or unnormalised quaternion at
+// either end (bounds not applied, as check-motion runs), where OMPL's slerp turns at an uneven rate.
+TEST(MotionValidator, RefusesEndsNoBoundHoldsFor)
+{
+    const LoadedProblem problem = makeProblem(test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)), thinWall());
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    continuous.setApplyBounds(false);
+    ob::ScopedState<> a(si), b(si);
+    setPose(a.get(), Vec3(-5, 0, 0), 0.0);
+    setPose(b.get(), Vec3(-4, 0, 0), 0.3);
+    ASSERT_TRUE(continuous.checkMotion(a.get(), b.get()));
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    for (const double w : {nan, inf, 2.0})
+    {
+        SCOPED_TRACE(w);
+        setPose(b.get(), Vec3(-4, 0, 0), 0.3);
+        b->as<ob::SE3StateSpace::StateType>()->rotation().w = w;
+        EXPECT_FALSE(continuous.checkMotion(a.get(), b.get()));
+        EXPECT_FALSE(continuous.checkMotion(b.get(), a.get()));
+        std::pair<ob::State *, double> last{si->allocState(), 1.0};
+        EXPECT_FALSE(continuous.checkMotion(a.get(), b.get(), last));
+        si->freeState(last.first);
+    }
 }
 
 TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)

@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -79,4 +82,77 @@ TEST(StatePose, StatesHoldTheRowInPathOrder)
     EXPECT_EQ(s->rotation().x, 0.0);
     const PoseRow back = rowOfState(s.get(), false);
     EXPECT_EQ(back[6], 1.0);
+}
+
+// The turn OMPL's interpolation makes, against the sum of the turns between 2,000 of its states
+// (moderate angles, where that sum is accurate), and against angles set exactly (tiny ones, where
+// acos of a dot product rounds to zero).
+TEST(StatePose, InterpolationTurnIsTheAngleOmplsInterpolationSweeps)
+{
+    TestRandom rng(20261127);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (const bool planar : {true, false})
+    {
+        ompl::base::StateSpacePtr space;
+        if (planar)
+            space = std::make_shared<ompl::base::SE2StateSpace>();
+        else
+            space = std::make_shared<ompl::base::SE3StateSpace>();
+        ompl::base::ScopedState<> a(space), b(space), s(space), previous(space);
+        for (int i = 0; i < 50; ++i)
+        {
+            if (planar)
+            {
+                a->as<ompl::base::SE2StateSpace::StateType>()->setYaw(M_PI * unit(rng));
+                b->as<ompl::base::SE2StateSpace::StateType>()->setYaw(M_PI * unit(rng));
+            }
+            else
+            {
+                a->as<ompl::base::SE3StateSpace::StateType>()->rotation().setAxisAngle(unit(rng), unit(rng), unit(rng),
+                                                                                       M_PI * unit(rng));
+                b->as<ompl::base::SE3StateSpace::StateType>()->rotation().setAxisAngle(unit(rng), unit(rng), unit(rng),
+                                                                                       M_PI * unit(rng));
+            }
+            double swept = 0.0;
+            previous = a;
+            for (int k = 1; k <= 2000; ++k)
+            {
+                space->interpolate(a.get(), b.get(), k / 2000.0, s.get());
+                const Mat3 relative =
+                    poseOfState(previous.get(), planar).rotation.transpose() * poseOfState(s.get(), planar).rotation;
+                swept += Eigen::AngleAxisd(relative).angle();
+                previous = s;
+            }
+            const double turn = interpolationTurn(a.get(), b.get(), planar);
+            EXPECT_LE(turn, M_PI + 1e-12);
+            EXPECT_NEAR(turn, swept, 1e-9) << (planar ? "SE2" : "SE3") << ", pair " << i;
+        }
+        for (const double angle : {1e-8, 3e-12, 2e-5, 1e-3})
+        {
+            if (planar)
+            {
+                a->as<ompl::base::SE2StateSpace::StateType>()->setYaw(0.5);
+                b->as<ompl::base::SE2StateSpace::StateType>()->setYaw(0.5 + angle);
+            }
+            else
+            {
+                a->as<ompl::base::SE3StateSpace::StateType>()->rotation().setIdentity();
+                b->as<ompl::base::SE3StateSpace::StateType>()->rotation().setAxisAngle(0.0, 0.6, 0.8, angle);
+            }
+            // SE2 turns by the difference of the yaws as doubles hold them.
+            const double expected = planar ? (0.5 + angle) - 0.5 : angle;
+            EXPECT_NEAR(interpolationTurn(a.get(), b.get(), planar), expected, 1e-6 * expected);
+        }
+    }
+    // No bound holds: a non-finite yaw, a quaternion off unit length.
+    const auto planarSpace = std::make_shared<ompl::base::SE2StateSpace>();
+    ompl::base::ScopedState<> p(planarSpace), q(planarSpace);
+    q->as<ompl::base::SE2StateSpace::StateType>()->setYaw(std::numeric_limits<double>::quiet_NaN());
+    EXPECT_TRUE(std::isinf(interpolationTurn(p.get(), q.get(), true)));
+    const auto space = std::make_shared<ompl::base::SE3StateSpace>();
+    ompl::base::ScopedState<> u(space), v(space);
+    u->as<ompl::base::SE3StateSpace::StateType>()->rotation().setIdentity();
+    v->as<ompl::base::SE3StateSpace::StateType>()->rotation().setIdentity();
+    v->as<ompl::base::SE3StateSpace::StateType>()->rotation().w = 1.0 + 1e-6;
+    EXPECT_TRUE(std::isinf(interpolationTurn(u.get(), v.get(), false)));
 }

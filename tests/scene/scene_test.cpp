@@ -236,6 +236,78 @@ TEST(SceneMotion, NeverAcceptsAMotionThatDenseSamplingFindsColliding)
     EXPECT_LT(rejected, n);
 }
 
+// A turn of half a circle goes one way or the other by the sign of a difference near zero, decided
+// by rounding (OMPL's SO2 by the yaw difference, a slerp by a dot product): an arm with a post on
+// one side of its sweep must be refused whichever way it is asked to turn, however rounding falls,
+// while a turn short of half a circle away from the post is certified.
+TEST(SceneMotion, HalfTurnsAreCertifiedBothWaysRound)
+{
+    std::vector<SceneBody> bodies;
+    bodies.push_back({"robot", std::make_shared<const BodyGeometry>(Shape::box(Vec3(0.5, 0.05, 0.5))), 0,
+                      RigidTransform{Mat3::Identity(), Vec3(0.5, 0.0, 0.0)}});
+    // The post stands where the arm points half way round the clockwise turn from yaw 1.
+    bodies.push_back(
+        {"obstacle.1", std::make_shared<const BodyGeometry>(Shape::sphere(0.1)), -1,
+         RigidTransform{Mat3::Identity(), 0.8 * Vec3(std::cos(1.0 - kPi / 2), std::sin(1.0 - kPi / 2), 0)}});
+    const Scene scene(std::move(bodies), 1, {});
+    QueryContext context;
+    const auto sweepCollides = [&](double from, double turn) {
+        for (int k = 0; k <= 400; ++k)
+            if (scene.collides({RigidTransform::fromPlanarPose(0.0, 0.0, from + turn * k / 400.0)}, context))
+                return true;
+        return false;
+    };
+    for (int i = 0; i < 40; ++i)
+    {
+        const double from = 1.0 + 1e-3 * i;
+        SCOPED_TRACE(from);
+        // Clockwise meets the post, counterclockwise does not.
+        ASSERT_TRUE(sweepCollides(from, -kPi));
+        ASSERT_FALSE(sweepCollides(from, kPi));
+        const std::vector<RigidTransform> start{RigidTransform::fromPlanarPose(0.0, 0.0, from)};
+        for (const double to : {from - kPi, from + kPi, std::nextafter(from - kPi, 0.0), from + kPi * (1.0 - 1e-12)})
+        {
+            const std::vector<RigidTransform> goal{RigidTransform::fromPlanarPose(0.0, 0.0, to)};
+            EXPECT_FALSE(checkSceneMotion(scene, start, goal, context).valid) << "to " << to;
+        }
+        const std::vector<RigidTransform> shortOfHalf{RigidTransform::fromPlanarPose(0.0, 0.0, from + 0.9 * kPi)};
+        EXPECT_TRUE(checkSceneMotion(scene, start, shortOfHalf, context).valid);
+    }
+}
+
+// A 2-long needle turning by 2e-8 rad sweeps its tip 2e-8 up, across a speck that lies between the
+// states the check rakes: the turn must count whole (acos of a dot product rounds it to zero).
+TEST(SceneMotion, TinyTurnsCountTheirWholeAngle)
+{
+    std::vector<SceneBody> bodies;
+    bodies.push_back(
+        {"robot", std::make_shared<const BodyGeometry>(Shape::box(Vec3(1.0, 1e-10, 0.5))), 0, RigidTransform()});
+    bodies.push_back({"obstacle.1", std::make_shared<const BodyGeometry>(Shape::box(Vec3(0.005, 0.8e-9, 0.5))), -1,
+                      RigidTransform{Mat3::Identity(), Vec3(0.985, 3.6e-9, 0.0)}});
+    const Scene scene(std::move(bodies), 1, {});
+    QueryContext context;
+    for (const bool planar : {true, false})
+        for (const double turn : {2e-8, 5e-8, -2e-8})
+        {
+            SCOPED_TRACE(testing::Message() << (planar ? "SE2, turn " : "SE3, turn ") << turn);
+            const std::vector<RigidTransform> start{RigidTransform()};
+            const std::vector<RigidTransform> goal{
+                planar ? RigidTransform::fromPlanarPose(0.0, 0.0, turn)
+                       : RigidTransform::fromAxisAngle(Vec3::Zero(), Vec3(0.0, 0.0, 1.0), turn)};
+            const SceneMotionResult sampled = checkSceneMotionBySampling(scene, start, goal, 2000, context);
+            ASSERT_EQ(sampled.valid, turn < 0.0);  // only turning up crosses the speck
+            SceneMotionOptions options;
+            options.planar = planar;
+            options.contactTolerance = 1e-12;  // the speck is 2.7e-9 from the needle, the default 2.2e-9
+            const SceneMotionResult exact = checkSceneMotion(scene, start, goal, context, options);
+            // In SE(3) a turn this small is certified for its whole angle at every t (OMPL keeps the
+            // start rotation to the end): the speck 2.7e-9 below the turning needle is within it.
+            EXPECT_EQ(exact.valid, sampled.valid && planar);
+            if (!exact.valid && !sampled.valid)
+                EXPECT_LE(exact.lastValidTime, sampled.contactTime);
+        }
+}
+
 TEST(SceneMotion, TranslationLpMatchesAdvancement)
 {
     // Box robots translating among boxes and hulls: the time-augmented LP decides those pairs;

@@ -17,7 +17,12 @@
 // for, the search then narrows to the bracket [last certified, contact] until it is shorter than
 // the contact tolerance. A motion is rejected when a middle state collides (contact found) or when
 // an interval shrinks below a clearance too small to certify (1e-7 of the scene size, a near
-// contact): a motion is never accepted on rounding alone. When the first contact is asked for, the
+// contact): a motion is never accepted on rounding alone. The angle is the one OMPL's interpolation
+// turns (interpolationTurn: yaw as SO2 takes it, slerp's angle by atan2, exact for tiny turns);
+// below about 9e-5 rad SO3's interpolation keeps R1 up to tau = 1 and s2 itself turns by the whole
+// angle, so that end turn widens every interval's slack and s2 is checked as it is. States that no
+// bound holds for (non-finite values, quaternions off unit length) are refused. When the first
+// contact is asked for, the
 // bracket closes on the first contact or near contact; a pass of collision checks at OMPL's
 // resolution first finds the earliest colliding sample. The verdict alone (checkMotion without a
 // last valid state) skips that pass: it checks collisions at states raked over the whole motion

@@ -20,6 +20,14 @@ PoseRow rowOfState(const ompl::base::State *state, bool planar);
 /// bit for bit transformOfRow of that row, so `check` and `check-motion` place the robot alike.
 RigidTransform poseOfState(const ompl::base::State *state, bool planar);
 
+/// The angle (radians) through which OMPL's interpolation from `from` to `to` turns the robot, at a
+/// constant rate in t: SE2's yaw difference the way SO2StateSpace::interpolate takes it (the
+/// shorter way round for yaws in [-pi, pi], and whatever it turns for others), SE3's slerp angle
+/// 2 atan2(|v|, |w|) of from^-1 to, which stays accurate for tiny angles where acos of a dot product
+/// rounds to zero. Infinity when no bound holds: a non-finite value, or a quaternion whose length
+/// is more than 1e-9 from 1 (OMPL's slerp then turns at an uneven rate).
+double interpolationTurn(const ompl::base::State *from, const ompl::base::State *to, bool planar);
+
 /// Fills a state from .path columns (`values` holds 7 numbers, x y z qx qy qz qw, or 3, x y theta),
 /// in the form stateRowOf gives: the quaternion made unit (rescaled when its squares over- or
 /// underflow; zero is the identity), the yaw wrapped into [-pi, pi), the bounds OMPL asserts.

@@ -68,10 +68,16 @@ struct SceneMotionOptions
     /// Give up advancing a pair after this many distance steps and report it as touching (never as
     /// free): only motions that pass within a hair of contact without touching take that many.
     std::size_t maxStepsPerPair = 5000;
+    /// The robots turn about z only, as OMPL's SE(2) interpolates them. Otherwise (SE(3)) turns
+    /// below 2e-4 rad are certified for their whole angle at every t, since OMPL's SO(3) keeps the
+    /// start rotation up to the end below about 9e-5 rad. Either way a turn within 1e-9 of half a
+    /// circle, whose direction rounding decides, is certified both ways round.
+    bool planar = false;
 };
 
 /// The robots' poses at time t of the motion from `start` to `goal` (robotCount transforms each):
-/// positions linearly, rotations along the shortest arc, as OMPL's SE(2)/SE(3) interpolate.
+/// positions linearly, rotations along the shortest arc, as OMPL's SE(2)/SE(3) interpolate (up to
+/// the cases SceneMotionOptions::planar describes, which checkSceneMotion covers).
 void interpolateScenePoses(const std::vector<RigidTransform> &start, const std::vector<RigidTransform> &goal, double t,
                            std::vector<RigidTransform> &out);
 
