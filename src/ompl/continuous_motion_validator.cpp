@@ -58,7 +58,7 @@ std::uint64_t reverseBits(std::uint64_t i, unsigned bits)
 }
 
 // The verdict path's raked collision checks: about one per kRakeStride of OMPL's samples (rounded
-// to a power of two); certification then starts from intervals spanning kStartGroup raked steps.
+// to a power of two); certification then starts from the intervals between raked states.
 // Measured with bench/motion_comparison.cpp (bench/README.md, section 3).
 constexpr unsigned kRakeStride = 8;
 
@@ -72,7 +72,6 @@ struct ScratchState
     ompl::base::SpaceInformation *si;
     ompl::base::State *state;
 };
-constexpr unsigned kStartGroup = 1;
 // The search for a first contact starts from intervals of this many of OMPL's segments: wide enough
 // for the grid to prove many at once (a sweep of several cells goes to it alone), and split where
 // it cannot. Measured with bench/motion_comparison.cpp against single segments (bench/README.md,
@@ -135,9 +134,7 @@ public:
     {
     }
 
-    /// `middleKnownFree`: the middle state was already checked (no collision test needed).
-    Outcome check(const MotionInterval &iv, const RigidTransform &middle, double translationSlack, double radialSlack,
-                  bool middleKnownFree)
+    Outcome check(const MotionInterval &iv, const RigidTransform &middle, double translationSlack, double radialSlack)
     {
         Outcome out;
         if (iv.front >= 0)
@@ -157,7 +154,7 @@ public:
             // Too wide for the exact query: the first layer's proof, or halves (no front listed).
             wideSweeps_.fetch_add(1, std::memory_order_relaxed);
             out.certified = validity_.poseSweptFreeByFirstLayer(middle, translationSlack, radialSlack);
-            out.colliding = !out.certified && !middleKnownFree && validity_.poseCollides(middle, context_);
+            out.colliding = !out.certified && validity_.poseCollides(middle, context_);
             return out;
         }
         if (!validity_.poseWithinSweptDistance(middle, translationSlack, radialSlack, robotRadius_, context_))
@@ -165,7 +162,7 @@ public:
             out.certified = true;
             return out;
         }
-        out.colliding = !middleKnownFree && validity_.poseCollides(middle, context_);
+        out.colliding = validity_.poseCollides(middle, context_);
         // A colliding middle ends the verdict and narrows the bracket: no front for it.
         if (useFronts_ && !out.colliding && iv.depth >= kFrontDepth && keptPairs_ + kFrontLimit <= kMaxFrontPairs &&
             validity_.poseListSweptNearPairs(middle, translationSlack, radialSlack, kFrontLimit, near_, context_))
@@ -402,7 +399,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
             break;
         }
         const IntervalChecks::Outcome outcome =
-            checks.check(iv, pose, translationRate * half, angleRate * half + rates.endTurn, /*middleKnownFree=*/false);
+            checks.check(iv, pose, translationRate * half, angleRate * half + rates.endTurn);
         if (outcome.certified)
         {
             certified = iv.b;  // intervals are taken in order: the free prefix grows
@@ -513,14 +510,12 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     const double translationRate = rates.translation, angleRate = rates.angle;
     const double speed = translationRate + robotRadius_ * angleRate;
 
-    // Certification of the dyadic intervals between the raked states (or of groups of them), by
-    // bisection with the swept-proximity query. A middle state that is a raked state is known to
-    // be collision-free; any other is checked for collision before splitting.
+    // Certification of the dyadic intervals between the raked states, by bisection with the
+    // swept-proximity query; a middle state is checked for collision before its interval splits.
     IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_, wideSweeps_);
     std::vector<MotionInterval> pending;
-    const std::uint64_t starts = std::max<std::uint64_t>(1, m / kStartGroup);
-    for (std::uint64_t k = 1; k <= starts; ++k)
-        pending.push_back({double(k - 1) / double(starts), double(k) / double(starts)});
+    for (std::uint64_t k = 1; k <= m; ++k)
+        pending.push_back({double(k - 1) / double(m), double(k) / double(m)});
     std::size_t queries = 0;
     while (!pending.empty())
     {
@@ -530,9 +525,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         const double half = 0.5 * (iv.b - iv.a);
         if (++queries > kMaxQueries)
             return report;  // refused
-        const double onGrid = mid * double(m);
-        const IntervalChecks::Outcome outcome = checks.check(
-            iv, poseAt(mid), translationRate * half, angleRate * half + rates.endTurn, onGrid == std::floor(onGrid));
+        const IntervalChecks::Outcome outcome =
+            checks.check(iv, poseAt(mid), translationRate * half, angleRate * half + rates.endTurn);
         if (outcome.certified)
             continue;
         if (outcome.colliding)
