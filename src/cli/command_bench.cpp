@@ -21,6 +21,7 @@
 
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -30,21 +31,22 @@ namespace hcd::cli
 {
 namespace
 {
-// "I/N" with 0 <= I < N.
+// "I/N" with 0 <= I < N, two whole numbers and nothing else; N at most 2^32 - 1 (shards are
+// counted in unsigned, and a shard's seed holds I in 32 bits).
 std::pair<unsigned, unsigned> parseShard(const std::string &text)
 {
     const auto slash = text.find('/');
-    try
+    if (slash != std::string::npos)
     {
-        if (slash != std::string::npos)
+        const std::optional<long long> index = wholeNumber(text.substr(0, slash)),
+                                       count = wholeNumber(text.substr(slash + 1));
+        if (index && count && *index >= 0 && *index < *count)
         {
-            const long index = std::stol(text.substr(0, slash)), count = std::stol(text.substr(slash + 1));
-            if (count >= 1 && index >= 0 && index < count)
-                return {unsigned(index), unsigned(count)};
+            if (*count > std::numeric_limits<unsigned>::max())
+                throw UsageError("--shard expects I/N with N at most " +
+                                 std::to_string(std::numeric_limits<unsigned>::max()) + ", got '" + text + "'");
+            return {unsigned(*index), unsigned(*count)};
         }
-    }
-    catch (const std::exception &)
-    {
     }
     throw UsageError("--shard expects I/N with 0 <= I < N, got '" + text + "'");
 }
@@ -166,6 +168,26 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
     }
     return slots;
 }
+
+// A benchmark's experiments are told apart by their planners' names: two planners of one name
+// would be merged by ompl_benchmark_statistics, as two configurations of one name would (refused
+// by configurationsOf). `planners` are one configuration's, from --planner or the .cfg's [planner].
+void requireDistinctPlannerNames(const std::vector<ompl::base::PlannerPtr> &planners, const CommandLine &cl,
+                                 const ProblemConfig &cfg)
+{
+    for (std::size_t i = 0; i < planners.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (planners[i]->getName() == planners[j]->getName())
+            {
+                if (cl.has("planner"))
+                    throw UsageError("option --planner gives the planner " + planners[i]->getName() + " twice, got '" +
+                                     cl.text("planner", "") + "'");
+                throw InputError(cfg.path, 0,
+                                 "[planner] declares two planners named " + planners[i]->getName() +
+                                     "; give one another name with TYPE.name = NAME");
+            }
+}
+
 struct SceneBenchRun
 {
     double timeLimit, memoryLimit;
@@ -206,9 +228,12 @@ int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<
     {
         install(c);
         labels += (c ? "," : "") + slots[c].label;
+        std::vector<ompl::base::PlannerPtr> planners;
         for (const PlannerRequest &request : requests)
+            planners.push_back(makePlanner(request, si));
+        requireDistinctPlannerNames(planners, cl, cfg);
+        for (const ompl::base::PlannerPtr &planner : planners)
         {
-            ompl::base::PlannerPtr planner = makePlanner(request, si);
             planner->setName(planner->getName() + "[" + slots[c].label + "]");
             slotOf[planner.get()] = c;
             benchmark.addPlanner(planner);
@@ -250,7 +275,6 @@ int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<
     log.commit();
     std::cout << "benchmark log written to: " << run.out << " (" << slotOf.size() << " planner/configuration pairs, "
               << run.shardRuns << " runs each, " << cfg.robotCount() << " robots; configurations: " << labels << ")\n";
-    (void)cl;
     return kSuccess;
 }
 }  // namespace
@@ -260,10 +284,10 @@ void declareBench(CommandLine &cl)
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format); its [benchmark] section gives the defaults")
         .option("planner", "NAME[,NAME...]",
                 "the planners (default: the .cfg's, else rrtconnect, or kpiece for a kinodynamic problem)")
-        .option("runs", "N", "runs per planner and configuration (default: the .cfg's run_count)")
-        .option("time", "SECONDS", "time limit per run (default: the .cfg's time_limit)")
+        .option("runs", "N", "runs per planner and configuration, at most 4294967295 (default: the .cfg's run_count)")
+        .option("time", "SECONDS", "time limit per run, at most 1e9 (default: the .cfg's time_limit)")
         .option("memory", "MB", "memory limit per run (default: the .cfg's mem_limit)")
-        .option("shard", "I/N", "do only the runs whose index is I modulo N (0 <= I < N)")
+        .option("shard", "I/N", "do only the runs whose index is I modulo N (0 <= I < N <= 4294967295)")
         .option("out", "FILE.log", "the benchmark log (default NAME.log, or NAME.shardI.log)")
         .option("motion", "continuous|discrete[,...]",
                 "how the --checker checkers check motions; both gives both (default continuous)")
@@ -316,11 +340,13 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     ControlSettings controlSettings;
     controlSettings.goalThreshold = cl.positiveNumber("goal-threshold", controlSettings.goalThreshold);
 
-    const long long totalRuns = cl.positiveInteger("runs", cfg.benchmark.runCount);
+    // OMPL counts runs in unsigned.
+    const long long totalRuns =
+        cl.positiveInteger("runs", cfg.benchmark.runCount, std::numeric_limits<unsigned>::max());
     // Shard I of N does the runs whose index is I modulo N, so shards never overlap and together
     // make exactly the whole benchmark.
     const unsigned shardRuns = unsigned((totalRuns - shardIndex + shardCount - 1) / shardCount);
-    const double timeLimit = cl.positiveNumber("time", cfg.benchmark.timeLimit);
+    const double timeLimit = cl.timeLimit("time", cfg.benchmark.timeLimit);
     const double memoryLimit = cl.positiveNumber("memory", cfg.benchmark.memoryLimit);
     if (shardRuns == 0)
         throw UsageError("shard " + std::to_string(shardIndex) + "/" + std::to_string(shardCount) + " has no runs of " +
@@ -395,9 +421,12 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     for (std::size_t c = 0; c < slots.size(); ++c)
     {
         labels += (c ? "," : "") + slots[c].label;
+        std::vector<ompl::base::PlannerPtr> planners;
         for (const PlannerRequest &request : requests)
+            planners.push_back(plannerOf(request));
+        requireDistinctPlannerNames(planners, cl, cfg);
+        for (const ompl::base::PlannerPtr &planner : planners)
         {
-            ompl::base::PlannerPtr planner = plannerOf(request);
             // The configuration in the name keeps set-ups apart when logs are merged into one database.
             planner->setName(planner->getName() + "[" + slots[c].label + "]");
             slotOf[planner.get()] = c;

@@ -85,9 +85,7 @@ int runInspect(const CommandLine &cl, const CheckerCatalogue &checkers)
 {
     const CheckerOptions checkerOptions = checkerOptionsOf(cl);
     const std::vector<std::string> checkerNames = checkerNamesOf(cl, checkers, checkerOptions);
-    const long long level = cl.integer("level", 0);
-    if (level < 0)
-        throw UsageError("option --level needs a non-negative tree level, got '" + cl.text("level", "") + "'");
+    const int level = treeLevelOf(cl);
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;
     if (cl.has("export"))
@@ -118,7 +116,7 @@ int runInspect(const CommandLine &cl, const CheckerCatalogue &checkers)
         {
             const std::string path = cl.text("export", "");
             AtomicFile obj(path);
-            if (!checker->exportLevel(int(level), obj.stream(), transformOfConfigPose(cfg.start, cfg.planar)))
+            if (!checker->exportLevel(level, obj.stream(), transformOfConfigPose(cfg.start, cfg.planar)))
                 throw UsageError("checker '" + name + "' has no hierarchy to export");
             obj.commit();
             std::cout << "  level " << level << " volumes written to " << path << '\n';

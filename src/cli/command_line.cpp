@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "command_line.h"
 
+#include "hybridcd/io/input_error.h"
+#include "hybridcd/io/problem_config.h"
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -34,7 +38,9 @@ int printUsageError(const CLI::App *app, const std::string &message)
 {
     std::string program = pathOf(app);
     program = program.substr(0, program.find(' '));
-    std::cerr << program << ": " << message << "\nRun '" << pathOf(app) << " --help' for the options.\n";
+    // The message quotes command-line words, which may hold control bytes: shown escaped.
+    std::cerr << program << ": " << printable(message, true) << "\nRun '" << pathOf(app)
+              << " --help' for the options.\n";
     return 1;
 }
 
@@ -135,16 +141,8 @@ long long CommandLine::integer(const std::string &key, long long fallback) const
     if (!has(key))
         return fallback;
     const std::string &value = values_.at(key);
-    try
-    {
-        std::size_t used = 0;
-        const long long v = std::stoll(value, &used);
-        if (used == value.size())
-            return v;
-    }
-    catch (const std::exception &)
-    {
-    }
+    if (const std::optional<long long> v = wholeNumber(value))
+        return *v;
     throw UsageError("option --" + key + " needs a whole number, got '" + value + "'");
 }
 
@@ -156,11 +154,23 @@ double CommandLine::positiveNumber(const std::string &key, double fallback) cons
     return v;
 }
 
-long long CommandLine::positiveInteger(const std::string &key, long long fallback) const
+double CommandLine::timeLimit(const std::string &key, double fallback) const
+{
+    const double v = positiveNumber(key, fallback);
+    if (v > kMaxTimeLimitSeconds)
+        throw UsageError("option --" + key + " needs at most 1e9 seconds (about 31 years), got '" + text(key, "") +
+                         "'");
+    return v;
+}
+
+long long CommandLine::positiveInteger(const std::string &key, long long fallback, long long max) const
 {
     const long long v = integer(key, fallback);
     if (v < 1)
         throw UsageError("option --" + key + " needs a positive whole number, got '" + text(key, "") + "'");
+    if (v > max)
+        throw UsageError("option --" + key + " needs a positive whole number up to " + std::to_string(max) + ", got '" +
+                         text(key, "") + "'");
     return v;
 }
 
@@ -226,7 +236,8 @@ int reportUsageError(const CommandLine &cl, const std::string &message)
 {
     std::string program = cl.commandPath();
     program = program.substr(0, program.find(' '));
-    std::cerr << program << ": " << message << "\nRun '" << cl.commandPath() << " --help' for the options.\n";
+    std::cerr << program << ": " << printable(message, true) << "\nRun '" << cl.commandPath()
+              << " --help' for the options.\n";
     return 1;
 }
 
@@ -271,7 +282,7 @@ void addCheckerOptions(CommandLine &cl, bool several)
         .option("mode", "exact|approximate",
                 "exact (default), or approximate with --tolerance (the lp and medial checkers)")
         .option("tolerance", "T", "approximate mode: contact may be reported up to distance T apart (positive)")
-        .option("max-triangles", "N", "refuse meshes of more than N triangles (default 2000000)");
+        .option("max-triangles", "N", "refuse meshes of more than N triangles (default 2000000, at most 1000000000)");
 }
 
 CheckerOptions checkerOptionsOf(const CommandLine &cl)
@@ -317,6 +328,24 @@ std::vector<std::string> checkerNamesOf(const CommandLine &cl, const CheckerCata
     return names;
 }
 
+std::optional<long long> wholeNumber(const std::string &text)
+{
+    // stoll alone would skip leading blanks and stop at the first non-digit ("7x" would read as 7).
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text.front())))
+        return std::nullopt;
+    try
+    {
+        std::size_t used = 0;
+        const long long v = std::stoll(text, &used);
+        if (used == text.size())
+            return v;
+    }
+    catch (const std::exception &)  // not a number, or beyond long long
+    {
+    }
+    return std::nullopt;
+}
+
 std::vector<std::string> splitList(const std::string &text)
 {
     std::vector<std::string> items;
@@ -326,6 +355,17 @@ std::vector<std::string> splitList(const std::string &text)
         if (!item.empty())
             items.push_back(item);
     return items;
+}
+
+int treeLevelOf(const CommandLine &cl)
+{
+    const long long level = cl.integer("level", 0);
+    if (level < 0)
+        throw UsageError("option --level needs a non-negative tree level, got '" + cl.text("level", "") + "'");
+    if (level > std::numeric_limits<int>::max())
+        throw UsageError("option --level needs a tree level up to " + std::to_string(std::numeric_limits<int>::max()) +
+                         ", got '" + cl.text("level", "") + "'");
+    return int(level);
 }
 
 std::uint_fast32_t seedOf(const CommandLine &cl)

@@ -7,6 +7,7 @@
 #include "hybridcd/query/checker_catalogue.h"
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -56,8 +57,13 @@ public:
     long long integer(const std::string &key, long long fallback) const;
     /// number() that must be greater than zero (times, tolerances, limits); a UsageError names the option.
     double positiveNumber(const std::string &key, double fallback) const;
-    /// integer() that must be at least 1 (counts, limits).
-    long long positiveInteger(const std::string &key, long long fallback) const;
+    /// positiveNumber() of seconds for OMPL's planners, at most kMaxTimeLimitSeconds (beyond it
+    /// OMPL's clock overflows into an immediate timeout); a UsageError names the option.
+    double timeLimit(const std::string &key, double fallback) const;
+    /// integer() that must be at least 1 (counts, limits) and at most `max`, the largest value the
+    /// count is kept in; a UsageError names the option.
+    long long positiveInteger(const std::string &key, long long fallback,
+                              long long max = std::numeric_limits<long long>::max()) const;
     /// The single positional argument every hybridcd command takes (the problem file).
     const std::string &problem() const;
 
@@ -98,8 +104,15 @@ CheckerOptions checkerOptionsOf(const CommandLine &cl);
 std::vector<std::string> checkerNamesOf(const CommandLine &cl, const CheckerCatalogue &checkers,
                                         const CheckerOptions &options = {}, const std::string &fallback = "auto");
 
+/// The whole number `text` spells in decimal, with an optional sign and nothing after it; nullopt
+/// when it is not one, or beyond long long. Option values are read with it (integer()).
+std::optional<long long> wholeNumber(const std::string &text);
+
 /// Splits "a,b,c" (empty items dropped).
 std::vector<std::string> splitList(const std::string &text);
+
+/// --level K, a tree level (default 0, the root): a whole number from 0 to the largest int.
+int treeLevelOf(const CommandLine &cl);
 
 /// --seed as OMPL takes it: a whole number from 1 to 2^32 - 1 (OMPL ignores a seed of 0).
 std::uint_fast32_t seedOf(const CommandLine &cl);

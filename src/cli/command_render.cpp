@@ -151,9 +151,7 @@ int runRender(const CommandLine &cl, const CheckerCatalogue &checkers)
         checkerName = checkerNamesOf(cl, checkers, checkerOptions).front();
     if (cl.has("checker") && !cl.has("level"))
         throw UsageError("option --checker chooses whose tree --level draws; give --level K too");
-    const long long level = cl.integer("level", 0);
-    if (level < 0)
-        throw UsageError("option --level needs a non-negative tree level, got '" + cl.text("level", "") + "'");
+    const int level = treeLevelOf(cl);
     const long long width = cl.positiveInteger("width", 800), height = cl.positiveInteger("height", 600);
     for (const auto &[name, value] : {std::pair<const char *, long long>{"width", width}, {"height", height}})
         if (value < 16 || value > 8192)
@@ -232,7 +230,7 @@ int runRender(const CommandLine &cl, const CheckerCatalogue &checkers)
     if (checkerName)
     {
         const auto checker = checkers.make(*checkerName, problem.scene, checkerOptions);
-        const std::optional<LevelVolumes> level_ = checker->levelVolumes(int(level));
+        const std::optional<LevelVolumes> level_ = checker->levelVolumes(level);
         if (!level_)
             throw UsageError("checker '" + *checkerName + "' has no hierarchy to draw; choose one with a tree (" +
                              "e.g. obb, ellipsoid)");

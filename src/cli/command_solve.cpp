@@ -146,7 +146,7 @@ void declareSolve(CommandLine &cl)
 {
     cl.positionals("PROBLEM.cfg", "the problem (OMPL.app's .cfg format)")
         .option("planner", "NAME", "the OMPL planner (default rrtconnect); 'help' lists them")
-        .option("time", "SECONDS", "the planning time limit (default 10)")
+        .option("time", "SECONDS", "the planning time limit, at most 1e9 (default 10)")
         .option("seed", "N", "seed OMPL's random numbers (1 to 4294967295) for a repeatable run")
         .option("out", "PATH_FILE", "where to write the path (default NAME.solution.path here)")
         .option("param", "KEY=VALUE[,...]", "planner parameters, e.g. range=5,intermediate_states=1")
@@ -186,7 +186,7 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
         ompl::RNG::setSeed(seedOf(cl));
     if (cl.has("verbose"))
         ompl::msg::setLogLevel(ompl::msg::LOG_INFO);
-    const double timeLimit = cl.positiveNumber("time", 10.0);
+    const double timeLimit = cl.timeLimit("time", 10.0);
     const CheckerOptions checkerOptions = checkerOptionsOf(cl);
     const std::string checkerName = checkerNamesOf(cl, checkers, checkerOptions).front();
     const MotionCheck motion = parseMotionCheck(cl.text("motion", "continuous"));

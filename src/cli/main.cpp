@@ -109,7 +109,8 @@ int main(int argc, char **argv)
         }
         catch (const std::exception &e)
         {
-            std::cerr << "hybridcd: error: " << e.what() << '\n';
+            // File names and contents in the message may hold control bytes: shown escaped.
+            std::cerr << "hybridcd: error: " << hcd::printable(e.what(), true) << '\n';
             return kBadInput;
         }
     }

@@ -25,10 +25,12 @@ std::string formatPose(const ConfigPose &p, bool planar)
 LoadedProblem loadProblemFor(const CommandLine &cl)
 {
     MeshLimits limits;
-    limits.maxTriangles = std::size_t(cl.positiveInteger("max-triangles", (long long)(limits.maxTriangles)));
+    // Bounded so that the file-size bound (128 bytes a triangle) and 32-bit vertex indices cannot overflow.
+    limits.maxTriangles =
+        std::size_t(cl.positiveInteger("max-triangles", (long long)(limits.maxTriangles), 1'000'000'000));
     LoadedProblem problem = loadProblem(cl.problem(), limits);
     for (const std::string &warning : problem.config.warnings)
-        std::cerr << "hybridcd: warning: " << warning << '\n';
+        std::cerr << "hybridcd: warning: " << printable(warning, true) << '\n';
     return problem;
 }
 

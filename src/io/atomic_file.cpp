@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <sys/stat.h>
 #include <system_error>
@@ -145,5 +146,58 @@ void checkOutputPath(const std::string &path, const std::string &option, const s
     if (probe.empty())
         throw InputError(path, 0, where + "cannot be written: " + std::strerror(errno));
     std::remove(probe.c_str());
+}
+
+std::string readInputFile(const std::string &path, const std::string &what, std::uintmax_t maxBytes)
+{
+    const std::string notRegular = "is not a regular file (a device, pipe or socket); a " + what + " is expected";
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);  // the file a symbolic link names
+    if (fs::is_directory(status))
+        throw InputError(path, 0, "is a folder, not a " + what);
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw InputError(path, 0, notRegular);
+    // O_NONBLOCK: should `path` have become a pipe since, opening it does not wait for a writer;
+    // the descriptor is checked again below, so what is read is the regular file that was opened.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        throw InputError(path, 0, "cannot open " + what + " (" + std::strerror(errno) + ")");
+    struct Closer
+    {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    struct stat info
+    {
+    };
+    if (::fstat(fd, &info) != 0)
+        throw InputError(path, 0, "cannot read " + what + " (" + std::strerror(errno) + ")");
+    if (!S_ISREG(info.st_mode))
+        throw InputError(path, 0, notRegular);
+    const auto tooLarge = [&](std::uintmax_t bytes) {
+        return InputError(path, 0,
+                          "the " + what + " has " + std::to_string(bytes) + " bytes, above the limit of " +
+                              std::to_string(maxBytes) + " bytes");
+    };
+    if (std::uintmax_t(info.st_size) > maxBytes)
+        throw tooLarge(std::uintmax_t(info.st_size));
+    // Read up to one byte past the limit: the file may have grown since fstat.
+    std::string text;
+    text.reserve(std::size_t(info.st_size));
+    char block[1 << 16];
+    while (text.size() <= maxBytes)
+    {
+        const ssize_t n = ::read(fd, block, sizeof block);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            throw InputError(path, 0, "cannot read " + what + " (" + std::strerror(errno) + ")");
+        if (n == 0)
+            break;
+        text.append(block, std::size_t(n));
+    }
+    if (text.size() > maxBytes)
+        throw tooLarge(text.size());
+    return text;
 }
 }  // namespace hcd

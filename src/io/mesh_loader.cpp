@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/io/mesh_loader.h"
 
+#include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 
 #include <assimp/Importer.hpp>
@@ -9,17 +10,21 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <optional>
 #include <string_view>
 #include <system_error>
+#include <unordered_map>
 #include <utility>
 
 namespace hcd
 {
+static_assert(kMaxFaceVertices == AI_MAX_FACE_INDICES, "the PLY list bound is assimp's face bound");
+
 namespace
 {
 // Depth-first over the node graph in the order OMPL.app walks it, transform = parent * node.
@@ -39,6 +44,7 @@ struct Imported
 {
     std::vector<aiVector3D> corners;  // three per triangle
     aiVector3D vertexSum{0.0f, 0.0f, 0.0f};
+    Vec3 vertexSumInDouble = Vec3::Zero();  // for when the float sum overflows
     std::size_t vertexCount = 0;
     std::size_t skippedNonTriangles = 0;
 };
@@ -59,11 +65,28 @@ struct Source
 // validation lets through when the reader left the primitive types unset) is an error here; and
 // the primitive-type flags are recomputed from the faces, since triangulation asserts that a mesh
 // flagged as holding polygons holds one. None of this changes a valid scene; the post-processing
-// that follows is OMPL.app's, as ReadFile would have applied it.
-const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, unsigned flags, const std::string &name)
+// that follows is OMPL.app's, as ReadFile would have applied it. Before it, the triangulation's
+// work is bounded: about n^2 steps for a face of n vertices (eight 32,000-vertex faces of a 2.8 MB
+// OBJ file took over a minute), at most kPolygonWorkPerTriangle per triangle allowed.
+const aiScene *postProcess(Assimp::Importer &importer, const aiScene *scene, unsigned flags, const std::string &name,
+                           const MeshLimits &limits)
 {
     if (scene == nullptr)
         return nullptr;
+    std::uintmax_t polygonWork = 0;
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i)
+        for (unsigned f = 0; f < scene->mMeshes[i]->mNumFaces; ++f)
+            if (const std::uintmax_t n = scene->mMeshes[i]->mFaces[f].mNumIndices; n > 3)
+                polygonWork += n * n;
+    const std::uintmax_t maxPolygonWork = std::uintmax_t(limits.maxTriangles) * kPolygonWorkPerTriangle;
+    if (polygonWork > maxPolygonWork)
+        throw InputError(name, 0,
+                         "the mesh's polygons are too large to triangulate: the sum over its faces of more than "
+                         "three vertices of (vertices per face)^2 is " +
+                             std::to_string(polygonWork) + ", above the limit of " + std::to_string(maxPolygonWork) +
+                             " (" + std::to_string(kPolygonWorkPerTriangle) + " for each of the " +
+                             std::to_string(limits.maxTriangles) +
+                             " triangles allowed per mesh; the command line's --max-triangles raises it)");
     for (unsigned i = 0; i < scene->mNumMeshes; ++i)
     {
         aiMesh *m = scene->mMeshes[i];
@@ -337,15 +360,879 @@ std::pair<int, std::string> objLineStatementProblem(std::string_view data)
     return {0, {}};
 }
 
+// Line number (from 1) of byte `offset` of `data`, for errors.
+int lineAt(std::string_view data, std::size_t offset)
+{
+    return 1 + int(std::count(data.begin(), data.begin() + std::min(offset, data.size()), '\n'));
+}
+
+// Saturating arithmetic for counts read from files.
+std::uintmax_t saturatingAdd(std::uintmax_t a, std::uintmax_t b)
+{
+    return a > std::numeric_limits<std::uintmax_t>::max() - b ? std::numeric_limits<std::uintmax_t>::max() : a + b;
+}
+std::uintmax_t saturatingMul(std::uintmax_t a, std::uintmax_t b)
+{
+    return b != 0 && a > std::numeric_limits<std::uintmax_t>::max() / b ? std::numeric_limits<std::uintmax_t>::max()
+                                                                        : a * b;
+}
+
+bool isWholeNumber(std::string_view text)
+{
+    return !text.empty() && text.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+// One element tag of XML data.
+struct XmlTag
+{
+    std::string_view name;
+    std::string_view attributes;   // the text between the name and '>' (or "/>")
+    bool closing = false;          // </name>
+    bool selfClosing = false;      // <name/>
+    std::size_t offset = 0;        // of its '<'
+    std::size_t contentStart = 0;  // one past its '>'
+};
+
+// Where the DOCTYPE declaration starting at `at` ends (one past its '>'), npos when it does not:
+// pugixml's reading (assimp's XML parser), so that the tags seen here are the ones it sees.
+std::size_t doctypeEnd(std::string_view data, std::size_t at)
+{
+    const auto startsAt = [&](std::size_t i, std::string_view text) { return data.compare(i, text.size(), text) == 0; };
+    std::size_t depth = 0;
+    for (std::size_t i = at + 2; i < data.size();)
+    {
+        if (startsAt(i, "<!["))  // an ignore section, which nests
+        {
+            std::size_t nested = 0;
+            for (i += 3; i < data.size() && !(startsAt(i, "]]>") && nested == 0);)
+                if (startsAt(i, "<!["))
+                    ++nested, i += 3;
+                else if (startsAt(i, "]]>"))
+                    --nested, i += 3;
+                else
+                    ++i;
+            if (i >= data.size())
+                return std::string_view::npos;
+            i += 3;
+        }
+        else if (startsAt(i, "<!") && !startsAt(i, "<!-"))
+            ++depth, i += 2;
+        else if (data[i] == '"' || data[i] == '\'')
+        {
+            i = data.find(data[i], i + 1);
+            if (i == std::string_view::npos)
+                return i;
+            ++i;
+        }
+        else if (startsAt(i, "<?") || startsAt(i, "<!--"))
+        {
+            const bool comment = data[i + 1] == '!';
+            i = data.find(comment ? "-->" : "?>", i + 2);
+            if (i == std::string_view::npos)
+                return i;
+            i += comment ? 3 : 2;
+        }
+        else if (data[i] == '<')
+            return std::string_view::npos;  // pugixml refuses it
+        else if (data[i] == '>' && depth-- == 0)
+            return i + 1;
+        else
+            ++i;
+    }
+    return std::string_view::npos;
+}
+
+// Passes every element tag of XML `data` to `visit(tag)`, skipping comments, CDATA sections,
+// processing instructions and the DOCTYPE as pugixml does. Returns why the data is not XML
+// pugixml reads (empty when it may be), with the offset of the construct at fault.
+template <typename Visit>
+std::pair<std::size_t, std::string> forEachXmlTag(std::string_view data, const Visit &visit)
+{
+    const auto startsAt = [&](std::size_t i, std::string_view text) { return data.compare(i, text.size(), text) == 0; };
+    const auto skipTo = [&](std::size_t from, std::string_view end) {
+        const std::size_t found = data.find(end, from);
+        return found == std::string_view::npos ? found : found + end.size();
+    };
+    for (std::size_t at = data.find('<'); at != std::string_view::npos; at = data.find('<', at))
+    {
+        std::size_t next = 0;
+        if (startsAt(at, "<!--"))
+            next = skipTo(at + 4, "-->");
+        else if (startsAt(at, "<![CDATA["))
+            next = skipTo(at + 9, "]]>");
+        else if (startsAt(at, "<?"))
+            next = skipTo(at + 2, "?>");
+        else if (startsAt(at, "<!DOCTYPE"))
+            next = doctypeEnd(data, at);
+        else if (startsAt(at, "<!"))
+            return {at, "a declaration '" + std::string(data.substr(at, 12)) + "' XML does not define"};
+        else
+        {
+            XmlTag tag;
+            tag.offset = at;
+            tag.closing = at + 1 < data.size() && data[at + 1] == '/';
+            std::size_t i = at + 1 + tag.closing;
+            const std::size_t nameStart = i;
+            while (i < data.size() && !std::isspace(static_cast<unsigned char>(data[i])) && data[i] != '>' &&
+                   data[i] != '/')
+                ++i;
+            tag.name = data.substr(nameStart, i - nameStart);
+            const std::size_t attributesStart = i;
+            for (char quote = 0; i < data.size() && (quote != 0 || data[i] != '>'); ++i)
+                if (quote != 0 ? data[i] == quote : data[i] == '"' || data[i] == '\'')
+                    quote = quote != 0 ? 0 : data[i];
+            if (i >= data.size())
+                return {at, "an element tag that is never closed"};
+            tag.selfClosing = !tag.closing && i > attributesStart && data[i - 1] == '/';
+            tag.attributes = data.substr(attributesStart, i - attributesStart - tag.selfClosing);
+            tag.contentStart = i + 1;
+            visit(tag);
+            next = i + 1;
+        }
+        if (next == std::string_view::npos)
+            return {at, "a comment, CDATA section, processing instruction or DOCTYPE that is never closed"};
+        at = next;
+    }
+    return {0, {}};
+}
+
+// The value of attribute `key` of an element's attribute text as an XML parser reads it (the five
+// named entities and character references replaced, tabs and line ends read as blanks); nullopt
+// when absent. Names are matched whole, so that a value holding "id=" is not taken for one.
+std::optional<std::string> xmlAttribute(std::string_view attributes, std::string_view key)
+{
+    for (std::size_t i = 0; i < attributes.size();)
+    {
+        while (i < attributes.size() && std::isspace(static_cast<unsigned char>(attributes[i])))
+            ++i;
+        const std::size_t nameStart = i;
+        while (i < attributes.size() && attributes[i] != '=' &&
+               !std::isspace(static_cast<unsigned char>(attributes[i])))
+            ++i;
+        const std::string_view name = attributes.substr(nameStart, i - nameStart);
+        while (i < attributes.size() && std::isspace(static_cast<unsigned char>(attributes[i])))
+            ++i;
+        if (name.empty() || i >= attributes.size() || attributes[i] != '=')
+            return std::nullopt;  // not XML; the parser refuses it
+        ++i;
+        while (i < attributes.size() && std::isspace(static_cast<unsigned char>(attributes[i])))
+            ++i;
+        if (i >= attributes.size() || (attributes[i] != '"' && attributes[i] != '\''))
+            return std::nullopt;
+        const std::size_t end = attributes.find(attributes[i], i + 1);
+        if (end == std::string_view::npos)
+            return std::nullopt;
+        const std::string_view raw = attributes.substr(i + 1, end - i - 1);
+        i = end + 1;
+        if (name != key)
+            continue;
+        std::string value;
+        for (std::size_t k = 0; k < raw.size(); ++k)
+        {
+            const char c = raw[k];
+            const std::size_t semicolon = c == '&' ? raw.find(';', k) : std::string_view::npos;
+            const bool entity = semicolon != std::string_view::npos && semicolon > k + 1;
+            if (c == '\r' && k + 1 < raw.size() && raw[k + 1] == '\n')
+                continue;  // one blank for the pair
+            if (c == '\t' || c == '\n' || c == '\r')
+                value += ' ';
+            else if (!entity)
+                value += c;
+            else
+            {
+                const std::string_view reference = raw.substr(k + 1, semicolon - k - 1);
+                const bool hex = reference.size() > 2 && reference[1] == 'x';
+                const std::string_view digits =
+                    reference.size() > 1 ? reference.substr(hex ? 2 : 1) : std::string_view();
+                unsigned long code = 0;
+                const bool numeric =
+                    reference[0] == '#' && !digits.empty() && digits.size() < 8 &&
+                    digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") == std::string_view::npos;
+                if (numeric)
+                    code = std::stoul(std::string(digits), nullptr, hex ? 16 : 10);
+                const std::pair<std::string_view, char> named[] = {
+                    {"lt", '<'}, {"gt", '>'}, {"amp", '&'}, {"quot", '"'}, {"apos", '\''}};
+                const auto known = std::find_if(std::begin(named), std::end(named),
+                                                [&](const auto &n) { return n.first == reference; });
+                if (known != std::end(named))
+                    value += known->second;
+                else if (numeric && code < 0x80)
+                    value += char(code);
+                else if (numeric && code < 0x800)
+                    value += {char(0xc0 | (code >> 6)), char(0x80 | (code & 0x3f))};
+                else if (numeric && code < 0x10000)
+                    value += {char(0xe0 | (code >> 12)), char(0x80 | ((code >> 6) & 0x3f)), char(0x80 | (code & 0x3f))};
+                else if (numeric)
+                    value += {char(0xf0 | (code >> 18)), char(0x80 | ((code >> 12) & 0x3f)),
+                              char(0x80 | ((code >> 6) & 0x3f)), char(0x80 | (code & 0x3f))};
+                else
+                {
+                    value += c;
+                    continue;
+                }
+                k = semicolon;
+            }
+        }
+        return value;
+    }
+    return std::nullopt;
+}
+
+// Why the structure of COLLADA data would make assimp 5.2 crash or read past its buffers, as the
+// line at fault and why (line 0 and empty when it would not):
+// - XML elements nested deeper than kMaxColladaDepth: assimp collects them recursively, and
+//   overflows the stack (a million nested elements; 10,000 nested <node>s).
+// - A node that contains itself through <instance_node> references (a node instancing itself, or
+//   L1 -> L2 -> L1): assimp expands instances recursively without end. A hierarchy deeper than
+//   kMaxColladaDepth once instances are expanded is refused as well, and one of more than
+//   kMaxColladaNodes nodes (assimp copies every instance: 24 nested doublings took 4 GB).
+// - An array holding fewer values than its count, or an accessor reading past its array's count
+//   (offset + count * stride, and the last element's parameters): assimp keeps `count` values and
+//   trusts the accessor, so it read garbage past them, or crashed for an accessor of 4 million
+//   vertices over 3 values.
+// Instances resolve as assimp resolves them: to a node directly in <library_nodes> or a
+// <visual_scene> with that id, else to any node of a visual scene with that id or name.
+std::pair<int, std::string> colladaStructureProblem(std::string_view data)
+{
+    constexpr auto none = std::numeric_limits<std::size_t>::max();
+    struct Frame
+    {
+        std::string_view name;
+        std::size_t node;      // the innermost <node> or <visual_scene> open, or none
+        std::size_t accessor;  // the innermost <accessor> open, or none
+        bool inScene;          // inside a <visual_scene>
+    };
+    struct Node
+    {
+        std::string id, name;
+        std::size_t offset, parent;
+        bool libraryLevel, inScene;
+    };
+    struct Instance
+    {
+        std::size_t from;
+        std::string target;
+        std::size_t offset;
+    };
+    struct Array
+    {
+        std::string id;
+        std::uintmax_t count, values;
+        std::size_t offset;
+    };
+    struct Accessor
+    {
+        std::string source;
+        std::uintmax_t count = 0, offset = 0, stride = 1, params = 0, paramValues = 0;
+        std::size_t tagOffset = 0;
+    };
+    std::vector<Frame> open;
+    std::vector<Node> nodes;
+    std::vector<Instance> instances;
+    std::vector<Array> arrays;
+    std::vector<Accessor> accessors;
+    std::size_t problemOffset = 0;
+    std::string problem;
+    const auto fail = [&](std::size_t offset, std::string why) {
+        if (problem.empty())
+            problemOffset = offset, problem = std::move(why);
+    };
+    const auto [xmlOffset, xmlProblem] = forEachXmlTag(data, [&](const XmlTag &tag) {
+        if (!problem.empty())
+            return;
+        if (tag.closing)
+        {
+            if (!open.empty())
+                open.pop_back();
+            return;
+        }
+        if (open.size() >= kMaxColladaDepth)
+            return fail(tag.offset,
+                        "its elements nest deeper than " + std::to_string(kMaxColladaDepth) + " levels (the limit)");
+        Frame frame = open.empty() ? Frame{tag.name, none, none, false} : open.back();
+        frame.name = tag.name;
+        const std::string_view parent = open.empty() ? std::string_view() : open.back().name;
+        if (tag.name == "node" || tag.name == "visual_scene")
+        {
+            const bool scene = tag.name == "visual_scene";
+            nodes.push_back({xmlAttribute(tag.attributes, "id").value_or(""),
+                             xmlAttribute(tag.attributes, "name").value_or(""), tag.offset, frame.node,
+                             scene || parent == "library_nodes", scene || frame.inScene});
+            frame.node = nodes.size() - 1;
+            frame.inScene = nodes.back().inScene;
+        }
+        else if (tag.name == "instance_node" && frame.node != none)
+        {
+            const std::string url = xmlAttribute(tag.attributes, "url").value_or("");
+            if (!url.empty() && url[0] == '#')
+                instances.push_back({frame.node, url.substr(1), tag.offset});
+        }
+        else if (tag.name.size() > 6 && tag.name.substr(tag.name.size() - 6) == "_array")
+        {
+            // The count is a whole number here: rejectBeforeImport checked it first.
+            const std::uintmax_t count = leadingCount(xmlAttribute(tag.attributes, "count").value_or(""));
+            std::uintmax_t values = 0;
+            if (!tag.selfClosing)
+            {
+                const std::size_t end = std::min(data.size(), data.find('<', tag.contentStart));
+                bool inValue = false;
+                for (std::size_t i = tag.contentStart; i < end; ++i)
+                {
+                    const bool blank = std::isspace(static_cast<unsigned char>(data[i])) != 0;
+                    values += !blank && !inValue;
+                    inValue = !blank;
+                }
+            }
+            arrays.push_back({xmlAttribute(tag.attributes, "id").value_or(""), count, values, tag.offset});
+        }
+        else if (tag.name == "accessor")
+        {
+            Accessor accessor;
+            accessor.tagOffset = tag.offset;
+            accessor.source = xmlAttribute(tag.attributes, "source").value_or("");
+            for (auto [key, value] : {std::pair<const char *, std::uintmax_t *>{"count", &accessor.count},
+                                      {"offset", &accessor.offset},
+                                      {"stride", &accessor.stride}})
+                if (const std::optional<std::string> text = xmlAttribute(tag.attributes, key))
+                {
+                    if (!isWholeNumber(*text))
+                        return fail(tag.offset, std::string("an accessor whose ") + key + " '" + text->substr(0, 20) +
+                                                    "' is not a whole number");
+                    *value = leadingCount(*text);
+                }
+            accessors.push_back(accessor);
+            frame.accessor = accessors.size() - 1;
+        }
+        else if (tag.name == "param" && frame.accessor != none)
+        {
+            // assimp reads one value per parameter (sixteen for a float4x4) from each element.
+            Accessor &accessor = accessors[frame.accessor];
+            ++accessor.params;
+            if (const std::optional<std::string> type = xmlAttribute(tag.attributes, "type"))
+                accessor.paramValues += *type == "float4x4" ? 16 : 1;
+        }
+        if (!tag.selfClosing)
+            open.push_back(frame);
+    });
+    if (!xmlProblem.empty())
+        fail(xmlOffset, xmlProblem);
+    if (!problem.empty())
+        return {lineAt(data, problemOffset), problem};
+
+    // Arrays and their accessors. assimp keeps the array last read of an id; the smallest is used.
+    std::unordered_map<std::string_view, std::uintmax_t> arrayCounts;
+    for (const Array &array : arrays)
+    {
+        if (array.values < array.count)
+            return {lineAt(data, array.offset), "an array '" + array.id + "' holding " + std::to_string(array.values) +
+                                                    " values, fewer than its count of " + std::to_string(array.count)};
+        const auto [it, added] = arrayCounts.emplace(array.id, array.count);
+        if (!added)
+            it->second = std::min(it->second, array.count);
+    }
+    for (const Accessor &accessor : accessors)
+    {
+        const auto array = accessor.source.size() > 1 && accessor.source[0] == '#'
+                               ? arrayCounts.find(std::string_view(accessor.source).substr(1))
+                               : arrayCounts.end();
+        if (array == arrayCounts.end() || accessor.count == 0)
+            continue;  // assimp refuses an accessor of an unknown array when it uses one
+        const std::uintmax_t elementValues = std::max({std::uintmax_t(1), accessor.params, accessor.paramValues});
+        const std::uintmax_t read =
+            std::max(saturatingAdd(accessor.offset, saturatingMul(accessor.count, accessor.stride)),
+                     saturatingAdd(saturatingAdd(accessor.offset, saturatingMul(accessor.count - 1, accessor.stride)),
+                                   elementValues));
+        if (read > array->second)
+            return {lineAt(data, accessor.tagOffset),
+                    "an accessor of '" + accessor.source + "' reading " + std::to_string(accessor.count) +
+                        " elements of stride " + std::to_string(accessor.stride) + " from offset " +
+                        std::to_string(accessor.offset) + ", " + std::to_string(read) +
+                        " values, past the array's count of " + std::to_string(array->second)};
+    }
+
+    // The node graph: each node's children and the nodes it instances.
+    const auto tooManyNodes = [&](std::size_t offset) {
+        return std::pair<int, std::string>{lineAt(data, offset),
+                                           "its scene has more than " + std::to_string(kMaxColladaNodes) +
+                                               " nodes with instanced nodes expanded (the limit)"};
+    };
+    if (nodes.size() > kMaxColladaNodes)
+        return tooManyNodes(nodes[kMaxColladaNodes].offset);
+    if (instances.empty())
+        return {0, {}};  // nesting alone is bounded by the element depth
+    std::unordered_map<std::string_view, std::vector<std::size_t>> libraryById, sceneByIdOrName;
+    for (std::size_t n = 0; n < nodes.size(); ++n)
+    {
+        if (nodes[n].libraryLevel && !nodes[n].id.empty())
+            libraryById[nodes[n].id].push_back(n);
+        if (nodes[n].inScene)
+        {
+            if (!nodes[n].id.empty())
+                sceneByIdOrName[nodes[n].id].push_back(n);
+            if (!nodes[n].name.empty() && nodes[n].name != nodes[n].id)
+                sceneByIdOrName[nodes[n].name].push_back(n);
+        }
+    }
+    struct Edge
+    {
+        std::size_t to, offset;
+    };
+    std::vector<std::vector<Edge>> edges(nodes.size());
+    for (std::size_t n = 0; n < nodes.size(); ++n)
+        if (nodes[n].parent != none)
+            edges[nodes[n].parent].push_back({n, nodes[n].offset});
+    for (const Instance &instance : instances)
+    {
+        const auto library = libraryById.find(instance.target);
+        const auto scene = sceneByIdOrName.find(instance.target);
+        const std::vector<std::size_t> *targets = library != libraryById.end()     ? &library->second
+                                                  : scene != sceneByIdOrName.end() ? &scene->second
+                                                                                   : nullptr;
+        for (std::size_t k = 0; targets != nullptr && k < targets->size(); ++k)
+            edges[instance.from].push_back({(*targets)[k], instance.offset});
+    }
+    // Depth-first without recursion (the graph may be a chain of millions): depth in levels.
+    enum : char
+    {
+        unseen,
+        onPath,
+        done
+    };
+    std::vector<char> state(nodes.size(), unseen);
+    std::vector<std::size_t> depth(nodes.size(), 1), expanded(nodes.size(), 1);
+    std::vector<std::pair<std::size_t, std::size_t>> path;  // node, next edge
+    for (std::size_t root = 0; root < nodes.size(); ++root)
+    {
+        if (state[root] != unseen)
+            continue;
+        path.push_back({root, 0});
+        state[root] = onPath;
+        while (!path.empty())
+        {
+            auto &[n, next] = path.back();
+            if (next < edges[n].size())
+            {
+                const Edge edge = edges[n][next++];
+                if (state[edge.to] == onPath)
+                {
+                    const Node &looped = nodes[edge.to];
+                    const std::string label = !looped.id.empty() ? looped.id : looped.name;
+                    return {lineAt(data, edge.offset),
+                            "its node '" + label +
+                                "' contains itself through <instance_node> references (a cycle), which assimp "
+                                "would expand without end"};
+                }
+                if (state[edge.to] == unseen)
+                {
+                    state[edge.to] = onPath;
+                    path.push_back({edge.to, 0});
+                }
+                continue;
+            }
+            for (const Edge &edge : edges[n])
+            {
+                depth[n] = std::max(depth[n], depth[edge.to] + 1);
+                expanded[n] = std::min(expanded[n] + expanded[edge.to], kMaxColladaNodes + 1);
+            }
+            if (expanded[n] > kMaxColladaNodes)
+                return tooManyNodes(nodes[n].offset);
+            if (depth[n] > kMaxColladaDepth)
+                return {lineAt(data, nodes[n].offset),
+                        "its node hierarchy, with instanced nodes expanded, is deeper than " +
+                            std::to_string(kMaxColladaDepth) + " levels (the limit)"};
+            state[n] = done;
+            path.pop_back();
+        }
+    }
+    return {0, {}};
+}
+
+// A PLY header's elements (the header checked by plyHeaderProblem first) and where its data starts.
+struct PlyProperty
+{
+    std::string_view name, type, countType;  // countType is empty for a single value
+};
+struct PlyElement
+{
+    std::string_view name;
+    std::uintmax_t count = 0;
+    int line = 0;
+    std::vector<PlyProperty> properties;
+};
+struct PlyLayout
+{
+    std::string_view format;
+    std::vector<PlyElement> elements;
+    std::size_t headerEnd = 0;  // the byte ending the end_header line, as assimp reads it
+};
+
+PlyLayout plyLayout(std::string_view data)
+{
+    PlyLayout layout;
+    int line = 1;
+    for (std::size_t start = 0; start < data.size(); ++line)
+    {
+        const std::size_t end = std::min(data.size(), data.find('\n', start));
+        const std::vector<std::string_view> words = leadingTokens(data.substr(start, end - start), end - start, false);
+        if (!words.empty() && words[0] == "end_header")
+        {
+            layout.headerEnd = std::min(end, data.find('\r', start));
+            break;
+        }
+        if (words.size() == 3 && words[0] == "format")
+            layout.format = words[1];
+        else if (words.size() == 3 && words[0] == "element")
+            layout.elements.push_back({words[1], leadingCount(words[2]), line, {}});
+        else if (!words.empty() && words[0] == "property" && !layout.elements.empty())
+            layout.elements.back().properties.push_back(words.size() == 5 ? PlyProperty{words[4], words[3], words[2]}
+                                                                          : PlyProperty{words[2], words[1], {}});
+        start = end + 1;
+    }
+    return layout;
+}
+
+std::size_t plyTypeSize(std::string_view type)
+{
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
+        return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
+        return 2;
+    return type == "double" || type == "float64" ? 8 : 4;
+}
+
+bool plyTypeIsFloat(std::string_view type)
+{
+    return type == "float" || type == "double" || type == "float32" || type == "float64";
+}
+
+bool plyTypeIsSigned(std::string_view type)
+{
+    return type == "char" || type == "short" || type == "int" || type == "int8" || type == "int16" || type == "int32";
+}
+
+// Whether assimp's number readers consume the whole of `token` as a value of PLY type `type`:
+// otherwise they stop inside it and read the next values from the wrong place.
+bool isPlyValue(std::string_view token, std::string_view type)
+{
+    std::size_t i = 0;
+    const auto digits = [&] {
+        const std::size_t from = i;
+        while (i < token.size() && token[i] >= '0' && token[i] <= '9')
+            ++i;
+        return i > from;
+    };
+    if (!plyTypeIsFloat(type))
+    {
+        if (plyTypeIsSigned(type) && !token.empty() && (token[0] == '-' || token[0] == '+'))
+            ++i;
+        return digits() && i == token.size();
+    }
+    if (!token.empty() && (token[0] == '-' || token[0] == '+'))
+        ++i;
+    const std::string word = lowercase(token.substr(i));
+    if (word == "nan" || word == "inf" || word == "infinity")
+        return true;
+    const bool whole = digits();
+    if (i < token.size() && (token[i] == '.' || token[i] == ','))
+    {
+        ++i;
+        if (!digits() && (!whole || token[i - 1] == ','))
+            return false;
+    }
+    else if (!whole)
+        return false;
+    if (i < token.size() && (token[i] == 'e' || token[i] == 'E'))
+    {
+        ++i;
+        if (i < token.size() && (token[i] == '-' || token[i] == '+'))
+            ++i;
+        digits();
+    }
+    return i == token.size();
+}
+
+// Why the data of a PLY file (its header checked by plyHeaderProblem) is not what its header
+// announces, as the line at fault (0 in binary data) and why; empty when it is. assimp 5.2's PLY
+// reader sizes each list by the count it reads before reading the values, so a 200-byte file with
+// a list count of 500,000,000 made it allocate 4 GB: list counts above kMaxFaceVertices are
+// refused, as are lists cut short (`255 0 1 2`, read as a face of 252 more zeros), values assimp
+// does not read whole, and data ending early. A vertex element without x, y and z (read as 0) is
+// refused too. ASCII data is read as assimp reads it: one element per line, where a line ends at
+// \r, \n, \f or a zero byte and the next starts after the following \n when a line end follows.
+std::pair<int, std::string> plyDataProblem(std::string_view data)
+{
+    const PlyLayout layout = plyLayout(data);
+    for (const PlyElement &element : layout.elements)
+    {
+        if (element.name == "vertex")
+            for (const char *axis : {"x", "y", "z"})
+                if (std::none_of(element.properties.begin(), element.properties.end(),
+                                 [&](const PlyProperty &p) { return p.name == axis && p.countType.empty(); }))
+                    return {element.line, std::string("its vertex element has no '") + axis + "' property"};
+        for (const PlyProperty &property : element.properties)
+            if (!property.countType.empty() && plyTypeIsFloat(property.countType))
+                return {element.line, "its list property '" + std::string(property.name) + "' has a count of type " +
+                                          std::string(property.countType) + ", not a whole-number type"};
+    }
+    const auto listTooLong = [](std::uintmax_t count) {
+        return "a list of " + std::to_string(count) + " values, above the limit of " +
+               std::to_string(kMaxFaceVertices) + " (the most vertices a face may have)";
+    };
+    const auto endsEarly = [](const PlyElement &element, std::uintmax_t read) {
+        return "its data ends after " + std::to_string(read) + " of its " + std::to_string(element.count) + " " +
+               std::string(element.name) + " elements";
+    };
+    if (layout.format == "ascii")
+    {
+        const auto isLineEnd = [&](std::size_t i) {
+            return data[i] == '\r' || data[i] == '\n' || data[i] == '\f' || data[i] == '\0';
+        };
+        // The line after the one ending at byte `end`.
+        const auto nextLine = [&](std::size_t end) {
+            std::size_t start = end + 1;
+            if (start < data.size() && isLineEnd(start))
+                start = std::min(data.size(), data.find('\n', start) + 1);
+            return start;
+        };
+        std::size_t start = nextLine(layout.headerEnd);
+        int line = lineAt(data, start);
+        for (const PlyElement &element : layout.elements)
+            for (std::uintmax_t i = 0; i < element.count; ++i)
+            {
+                if (start >= data.size())
+                    return {line, endsEarly(element, i)};
+                std::size_t end = start;
+                while (end < data.size() && !isLineEnd(end))
+                    ++end;
+                const std::string_view text = data.substr(start, end - start);
+                std::size_t at = 0;
+                const auto nextValue = [&] {
+                    at = std::min(text.size(), text.find_first_not_of(" \t", at));
+                    const std::size_t from = at;
+                    at = std::min(text.size(), text.find_first_of(" \t", at));
+                    return text.substr(from, at - from);
+                };
+                for (const PlyProperty &property : element.properties)
+                {
+                    const bool list = !property.countType.empty();
+                    const std::string_view first = nextValue();
+                    const std::string what = "'" + std::string(property.name) + "' of " + std::string(element.name) +
+                                             " element " + std::to_string(i);
+                    if (first.empty())
+                        return {line, "its line has no value for " + what};
+                    if (!isPlyValue(first, list ? property.countType : property.type))
+                        return {line, "its value '" + std::string(first.substr(0, 20)) + "' for " + what +
+                                          " is not a number of type " +
+                                          std::string(list ? property.countType : property.type)};
+                    if (!list)
+                        continue;
+                    if (first[0] == '-' && first.find_first_not_of("-+0") != std::string_view::npos)
+                        return {line, "its list " + what + " has a negative count"};
+                    const std::uintmax_t count = leadingCount(first.substr(first[0] == '+' || first[0] == '-'));
+                    if (count > kMaxFaceVertices)
+                        return {line, "its list " + what + " is " + listTooLong(count)};
+                    for (std::uintmax_t k = 0; k < count; ++k)
+                    {
+                        const std::string_view value = nextValue();
+                        if (value.empty())
+                            return {line, "its list " + what + " announces " + std::to_string(count) +
+                                              " values but holds " + std::to_string(k)};
+                        if (!isPlyValue(value, property.type))
+                            return {line, "its value '" + std::string(value.substr(0, 20)) + "' in the list " + what +
+                                              " is not a number of type " + std::string(property.type)};
+                    }
+                }
+                const std::size_t next = nextLine(end);
+                line +=
+                    int(std::count(data.begin() + std::ptrdiff_t(start), data.begin() + std::ptrdiff_t(next), '\n'));
+                start = next;
+            }
+        return {0, {}};
+    }
+    // Binary: assimp's data starts after the byte ending the end_header line, and after one more
+    // byte when that one is a \n (the \n of "\r\n").
+    const bool bigEndian = layout.format == "binary_big_endian";
+    std::uintmax_t at = layout.headerEnd + 1;
+    if (at < data.size() && data[at] == '\n')
+        ++at;
+    for (const PlyElement &element : layout.elements)
+    {
+        std::uintmax_t fixedSize = 0;
+        bool lists = false;
+        for (const PlyProperty &property : element.properties)
+        {
+            lists = lists || !property.countType.empty();
+            fixedSize += plyTypeSize(property.type);
+        }
+        if (!lists)
+        {
+            const std::uintmax_t end = saturatingAdd(at, saturatingMul(element.count, fixedSize));
+            if (end > data.size())
+                return {0, endsEarly(element, (data.size() - std::min<std::uintmax_t>(at, data.size())) /
+                                                  std::max<std::uintmax_t>(fixedSize, 1))};
+            at = end;
+            continue;
+        }
+        for (std::uintmax_t i = 0; i < element.count; ++i)
+            for (const PlyProperty &property : element.properties)
+            {
+                if (property.countType.empty())
+                {
+                    at += plyTypeSize(property.type);
+                    continue;
+                }
+                const std::size_t countSize = plyTypeSize(property.countType);
+                if (at + countSize > data.size())
+                    return {0, endsEarly(element, i)};
+                std::uintmax_t count = 0;
+                for (std::size_t b = 0; b < countSize; ++b)
+                    count |= std::uintmax_t(static_cast<unsigned char>(data[at + b]))
+                             << (8 * (bigEndian ? countSize - 1 - b : b));
+                const bool negative = plyTypeIsSigned(property.countType) && (count >> (8 * countSize - 1)) != 0;
+                if (negative)
+                    return {0, "its list '" + std::string(property.name) + "' of " + std::string(element.name) +
+                                   " element " + std::to_string(i) + " has a negative count"};
+                if (count > kMaxFaceVertices)
+                    return {0, "its list '" + std::string(property.name) + "' of " + std::string(element.name) +
+                                   " element " + std::to_string(i) + " is " + listTooLong(count)};
+                at += countSize + count * plyTypeSize(property.type);
+                if (at > data.size())
+                    return {0, endsEarly(element, i)};
+            }
+        if (at > data.size())
+            return {0, endsEarly(element, element.count)};
+    }
+    return {0, {}};
+}
+
+// The first face of OFF data that assimp 5.2's OFF reader would read with a vertex index out of
+// range (it clamps the index to the last vertex, silently) or without one where one is due (it
+// reads 0), as its line and why; also a line of 4096 or more bytes, which the reader copies into a
+// 4096-byte buffer with its terminating zero past the end. The data is read as the reader reads
+// it: the header (comments skipped), one line per vertex, then face lines, a face announcing 0 or
+// more than 9 vertices skipped without counting (as the reader skips it).
+std::pair<int, std::string> offFaceProblem(std::string_view data)
+{
+    const std::size_t n = data.size();
+    std::size_t i = 0;
+    const auto at = [&](std::size_t k) { return k < n ? data[k] : '\0'; };
+    const auto digit = [&](std::size_t k) { return at(k) >= '0' && at(k) <= '9'; };
+    const auto lineEnd = [&](std::size_t k) {
+        return at(k) == '\r' || at(k) == '\n' || at(k) == '\0' || at(k) == '\f';
+    };
+    const auto skipSpacesAndLineEnds = [&] {
+        while (at(i) == ' ' || at(i) == '\t' || at(i) == '\r' || at(i) == '\n')
+            ++i;
+    };
+    const auto nextToken = [&] {
+        skipSpacesAndLineEnds();
+        while (i <= n && (at(i) == '#' || at(i) == '\n' || at(i) == '\r'))
+        {
+            while (at(i) != '\r' && at(i) != '\n' && at(i) != '\0')
+                ++i;
+            skipSpacesAndLineEnds();
+        }
+    };
+    // strtoul10: digits, wrapping as the reader's unsigned int does.
+    const auto readNumber = [&](std::size_t &k, const auto &charAt) {
+        std::uint32_t value = 0;
+        for (; charAt(k) >= '0' && charAt(k) <= '9'; ++k)
+            value = value * 10 + std::uint32_t(charAt(k) - '0');
+        return value;
+    };
+    nextToken();
+    if (i + 1 < n && at(i) == 'S' && at(i + 1) == 'T')
+        i += 2;
+    for (const char flag : {'C', 'N', '4'})
+        if (i < n && at(i) == flag)
+            ++i;
+    const bool dimension = i < n && at(i) == 'n';
+    i += dimension;
+    if (i + 2 < n && at(i) == 'O' && at(i + 1) == 'F' && at(i + 2) == 'F')
+        i += 3;
+    nextToken();
+    if (!digit(i))
+        return {0, {}};  // the reader refuses the header
+    if (dimension)
+    {
+        if (readNumber(i, at) > 3)
+            return {0, {}};  // the reader refuses more than three dimensions
+        nextToken();
+    }
+    nextToken();
+    const std::uint32_t vertices = readNumber(i, at);
+    nextToken();
+    const std::uint32_t faces = readNumber(i, at);
+    nextToken();
+    readNumber(i, at);
+    nextToken();
+    // GetNextLine into a 4096-byte buffer; false at the end of the data.
+    std::size_t lineStart = 0, lineLength = 0;
+    const auto nextLine = [&] {
+        if (at(i) == '\0')
+            return false;
+        lineStart = i;
+        while (!lineEnd(i))
+            ++i;
+        lineLength = i - lineStart;
+        while (lineEnd(i) && at(i) != '\0')
+            ++i;
+        return true;
+    };
+    const auto tooLong = [&] {
+        return std::pair<int, std::string>{lineAt(data, lineStart),
+                                           "its line of " + std::to_string(lineLength) +
+                                               " bytes is longer than the 4095 the OFF reader holds"};
+    };
+    for (std::uint32_t v = 0; v < vertices && nextLine(); ++v)
+        if (lineLength >= 4096)
+            return tooLong();
+    for (std::uint32_t f = 0; f < faces && nextLine();)
+    {
+        if (lineLength >= 4096)
+            return tooLong();
+        const auto charAt = [&](std::size_t k) { return k < lineLength ? data[lineStart + k] : '\0'; };
+        std::size_t k = 0;
+        const auto skipSpaces = [&] {
+            while (charAt(k) == ' ' || charAt(k) == '\t')
+                ++k;
+        };
+        skipSpaces();
+        const std::uint32_t count = readNumber(k, charAt);
+        if (count == 0 || count > 9)
+            continue;
+        for (std::uint32_t m = 0; m < count; ++m)
+        {
+            skipSpaces();
+            if (charAt(k) < '0' || charAt(k) > '9')
+                return {lineAt(data, lineStart),
+                        "its face of " + std::to_string(count) + " vertices has " +
+                            (charAt(k) == '\0' ? std::string("only ") + std::to_string(m) + " vertex indices"
+                                               : "'" + std::string(1, charAt(k)) + "' where vertex index " +
+                                                     std::to_string(m + 1) + " is due")};
+            const std::uint32_t index = readNumber(k, charAt);
+            if (index >= vertices)
+                return {lineAt(data, lineStart), "its face has the vertex index " + std::to_string(index) +
+                                                     ", out of range for its " + std::to_string(vertices) +
+                                                     " vertices (numbered from 0)"};
+        }
+        ++f;
+    }
+    return {0, {}};
+}
+
 // Refuses, before assimp sees them, data that assimp 5.2's readers cannot survive (each found by
 // fuzzing; `format` is the file's extension or the buffer's hint):
 // - PLY data without an "end_header" line, or with a header that is not printable text (see
-//   plyHeaderProblem): the PLY reader then never returns.
-// - COLLADA data with array elements that have no count, or a count beyond the data (below).
+//   plyHeaderProblem): the PLY reader then never returns. Then data that is not what the header
+//   announces, or lists longer than kMaxFaceVertices (see plyDataProblem).
+// - COLLADA data with array elements that have no count, or a count beyond the data (below), and
+//   nesting, instancing cycles or accessors assimp cannot survive (see colladaStructureProblem).
 // - OFF data whose header announces more vertices or faces than its bytes can hold: the OFF reader
 //   allocates every announced face before reading one, and billions of them exhaust memory
 //   (tests/fuzz_corpus/mesh/regression_off_huge_face_count.off). Every vertex and face takes more
-//   than one byte, so a count above the data's size is never valid.
+//   than one byte, so a count above the data's size is never valid. Then face indices out of range
+//   or missing, which the reader replaces silently (see offFaceProblem).
 // - OBJ data with a line statement the OBJ reader could read with fewer than two vertices (see
 //   objLineStatementProblem): the reader then writes past the end of its vertex array. Checked
 //   whenever the OBJ reader may get the data: an "obj" extension or hint, or one no reader claims
@@ -362,8 +1249,12 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
 
     const bool ply = kind == "ply" || first.rfind("ply", 0) == 0;
     if (ply)
+    {
         if (const std::string problem = plyHeaderProblem(data); !problem.empty())
             throw InputError(name, 0, "malformed PLY file: " + problem);
+        if (const auto [line, problem] = plyDataProblem(data); !problem.empty())
+            throw InputError(name, line, "malformed PLY file: " + problem);
+    }
 
     // COLLADA: assimp 5.2's reader dereferences a null pointer on an array element without a
     // count (tests/fuzz_corpus/mesh/regression_collada_array_without_count.dae), and a count is
@@ -401,6 +1292,11 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
             });
         if (!problem.empty())
             throw InputError(name, 0, "malformed COLLADA file: " + problem);
+        // The structure only where the COLLADA reader may get the data (as for OBJ above): other
+        // readers' data is not XML.
+        if (kind == "dae" || kind == "xml" || !importer.IsExtensionSupported(kind.c_str()))
+            if (const auto [line, structure] = colladaStructureProblem(data); !structure.empty())
+                throw InputError(name, line, "malformed COLLADA file: " + structure);
     }
 
     // The OFF header is "[ST][C][N][4][n]OFF", an optional dimension after the 'n' form, then the
@@ -431,6 +1327,9 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
                              "malformed OFF file: its header announces " + std::string(counts[k]) + " " +
                                  names[k + (dimension ? 0 : 1)] + ", more than its " + std::to_string(data.size()) +
                                  " bytes can hold");
+    if (kind == "off" || !importer.IsExtensionSupported(kind.c_str()))  // where the OFF reader may get it
+        if (const auto [line, problem] = offFaceProblem(data); !problem.empty())
+            throw InputError(name, line, "malformed OFF file: " + problem);
 }
 
 std::string extensionOf(const std::string &path)
@@ -451,7 +1350,7 @@ Imported import(Assimp::Importer &importer, const Source &source, unsigned flags
                               ? importer.ReadFileFromMemory(source.data.data(), source.data.size(),
                                                             aiProcess_ValidateDataStructure, source.formatHint->c_str())
                               : importer.ReadFile(source.name, aiProcess_ValidateDataStructure);
-    const aiScene *scene = postProcess(importer, read, flags, source.name);
+    const aiScene *scene = postProcess(importer, read, flags, source.name, limits);
     const std::string &path = source.name;
     if (scene == nullptr)
         throw InputError(path, 0, std::string("cannot read mesh: ") + importer.GetErrorString());
@@ -473,7 +1372,9 @@ Imported import(Assimp::Importer &importer, const Source &source, unsigned flags
     visitNodes(scene, scene->mRootNode, aiMatrix4x4(), [&](const aiMesh *m, const aiMatrix4x4 &transform) {
         for (unsigned v = 0; v < m->mNumVertices; ++v)
         {
-            out.vertexSum += transform * m->mVertices[v];
+            const aiVector3D p = transform * m->mVertices[v];
+            out.vertexSum += p;
+            out.vertexSumInDouble += Vec3(p.x, p.y, p.z);
             ++out.vertexCount;
         }
         for (unsigned f = 0; f < m->mNumFaces; ++f)
@@ -538,10 +1439,22 @@ LoadedMesh loadFrom(Assimp::Importer &importer, const Source &source, MeshRole r
                          "mesh file holds no triangle (" + std::to_string(out.skippedNonTriangles) +
                              " point or line primitives only)");
 
+    for (const aiVector3D &c : corners)
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+            throw InputError(path, 0, "mesh has a non-finite vertex coordinate");
     aiVector3D shift(0.0f, 0.0f, 0.0f);
     if (role != MeshRole::Environment)
     {
         shift = vertexSum / float(vertexCount);
+        // A float sum of vertices near the float range's end (3.4e38) overflows: OMPL.app's robot
+        // would be at infinity there, so no compatibility is lost by taking the mean in double.
+        if (!std::isfinite(shift.x) || !std::isfinite(shift.y) || !std::isfinite(shift.z))
+        {
+            const Vec3 mean = imported.vertexSumInDouble / double(vertexCount);
+            if (!mean.allFinite())  // a vertex outside the triangles is not finite
+                throw InputError(path, 0, "mesh has a non-finite vertex coordinate");
+            shift = aiVector3D(float(mean.x()), float(mean.y()), float(mean.z()));
+        }
         if (role == MeshRole::RobotPlanar)
             shift.z = 0.0f;
     }
@@ -558,7 +1471,9 @@ LoadedMesh loadFrom(Assimp::Importer &importer, const Source &source, MeshRole r
         mesh.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
     for (const Vec3 &v : mesh.vertices)
         if (!v.allFinite())
-            throw InputError(path, 0, "mesh has a non-finite vertex coordinate");
+            throw InputError(path, 0,
+                             "the robot's vertex coordinates, centred on their mean, exceed single precision "
+                             "(about 3.4e38)");
     out.droppedDegenerate = weldAndDropDegenerate(mesh);
     if (mesh.empty())
         throw InputError(path, 0, "every triangle of the mesh is degenerate (zero area)");
@@ -576,23 +1491,14 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, 0, "is a folder, not a mesh file");
-    if (!std::ifstream(path).good())
-        throw InputError(path, 0, "cannot open mesh file (missing or unreadable)");
     // Refused before assimp reads it: assimp holds the whole file and more in memory.
     const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
     if (!ec)
         rejectAboveByteLimit(bytes, "file", path, limits);
-    // Read up to one byte past the limit, so that a device or pipe without a size cannot run on.
+    // readInputFile refuses a pipe (opening one waits for a writer), a device or a socket before
+    // reading, and reads at most one byte past the limit.
     const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
-    std::ifstream in(path, std::ios::binary);
-    std::string content;
-    char block[1 << 16];
-    while (in && content.size() <= maxBytes)
-    {
-        in.read(block, sizeof block);
-        content.append(block, std::size_t(in.gcount()));
-    }
-    rejectAboveByteLimit(content.size(), "file", path, limits);
+    const std::string content = readInputFile(path, "mesh file", maxBytes);
     rejectBeforeImport(content, extensionOf(path), path, *importer.importer_);
     // assimp then reads the file again by path, not these bytes: a mesh's own references (an OBJ's
     // .mtl library, a COLLADA file's external parts) resolve only beside the file.

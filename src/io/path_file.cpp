@@ -1,13 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/io/path_file.h"
 
+#include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -16,17 +15,13 @@ namespace hcd
 {
 namespace
 {
-std::string readText(const std::string &path)
+std::string readText(const std::string &path) { return readInputFile(path, "pose file", kMaxPoseFileBytes); }
+
+// A word of the file as a message quotes it: control bytes escaped, and no more than 60 bytes.
+std::string quotedWord(const std::string &word)
 {
-    // A folder opens as an empty stream on Linux: without this check it would read as no poses.
-    if (std::filesystem::is_directory(path))
-        throw InputError(path, 0, "is a folder, not a pose file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw InputError(path, 0, "cannot open file (missing or unreadable)");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    constexpr std::size_t kShown = 60;
+    return "'" + printable(word.substr(0, kShown)) + (word.size() > kShown ? "...'" : "'");
 }
 
 // Reads every non-blank, non-comment line as at least `columns` finite numbers.
@@ -39,6 +34,8 @@ std::vector<PoseRecord> parseRows(std::string_view text, const std::string &path
     while (std::getline(in, line))
     {
         ++lineNo;
+        if (lineNo == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0)
+            line.erase(0, 3);  // a UTF-8 byte-order mark, as some editors write (the .cfg reader skips it too)
         const auto hash = line.find('#');
         if (hash != std::string::npos)
             line.erase(hash);
@@ -53,9 +50,9 @@ std::vector<PoseRecord> parseRows(std::string_view text, const std::string &path
             char *end = nullptr;
             const double v = std::strtod(word.c_str(), &end);
             if (end != word.c_str() + word.size())
-                throw InputError(path, lineNo, "'" + word + "' is not a number");
+                throw InputError(path, lineNo, quotedWord(word) + " is not a number");
             if (!std::isfinite(v))
-                throw InputError(path, lineNo, "'" + word + "' is not a finite number");
+                throw InputError(path, lineNo, quotedWord(word) + " is not a finite number");
             row.values.push_back(v);
         }
         if (row.values.empty())

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/io/problem_config.h"
 
+#include "hybridcd/io/atomic_file.h"
 #include "hybridcd/io/input_error.h"
 
 #include <algorithm>
@@ -166,18 +167,7 @@ void rejectBinary(const std::string &line, const std::string &path, int lineNo)
 
 ProblemConfig readProblemConfig(const std::string &path)
 {
-    // Only regular files: a folder opens as an empty stream, and a device such as /dev/zero
-    // would be read without end.
-    if (std::filesystem::is_directory(path))
-        throw InputError(path, 0, "is a folder, not a problem file (.cfg)");
-    if (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path))
-        throw InputError(path, 0, "is not a regular file; a problem file (.cfg) is expected");
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw InputError(path, 0, "cannot open problem file (missing or unreadable)");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseProblemConfig(text.str(), path);
+    return parseProblemConfig(readInputFile(path, "problem file (.cfg)", kMaxProblemFileBytes), path);
 }
 
 ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
@@ -512,6 +502,11 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
         const double a = parser.number("volume.min." + axis, *lo), b = parser.number("volume.max." + axis, *hi);
         if (a > b)
             throw InputError(path, lo->line, "volume.min." + axis + " exceeds volume.max." + axis);
+        // OMPL samples in and measures the volume by its width: an infinite one gives no state.
+        if (!std::isfinite(b - a))
+            throw InputError(path, lo->line,
+                             "volume." + axis + " is too wide: volume.max." + axis + " - volume.min." + axis +
+                                 " overflows to infinity");
         return std::make_pair(a, b);
     };
     cfg.volumeX = readRange("x");
@@ -547,6 +542,9 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
             const double limit = parser.number(key, e);
             if (limit <= 0.0)
                 throw InputError(path, e.line, key + " needs a positive number, got '" + e.value + "'");
+            if (key == "time_limit" && limit > kMaxTimeLimitSeconds)
+                throw InputError(path, e.line,
+                                 "time_limit needs at most 1e9 seconds (about 31 years), got '" + e.value + "'");
             (key == "time_limit" ? cfg.benchmark.timeLimit : cfg.benchmark.memoryLimit) = limit;
         }
         else if (key == "run_count")

@@ -11,6 +11,7 @@
 #include <map>
 #include <regex>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -100,7 +101,8 @@ std::map<std::string, FileState> snapshot(const fs::path &root)
     std::map<std::string, FileState> files;
     for (const auto &entry : fs::recursive_directory_iterator(root))
     {
-        if (!entry.is_regular_file())
+        std::error_code ec;  // a symbolic link to itself has no status
+        if (!entry.is_regular_file(ec))
             continue;
         FileState state{entry.file_size(), entry.last_write_time(), {}};
         if (state.size < (1u << 20))
@@ -147,6 +149,15 @@ std::string applySetup(const std::string &step, const fs::path &tmp)
     }
     else if (p[0] == "sparse-stl")
         writeSparseStl(target, std::uint32_t(std::stoul(p.at(2))));
+    else if (p[0] == "sparse")
+    {
+        std::ofstream(target) << "0 0 0 0 0 0 1\n";
+        fs::resize_file(target, std::stoull(p.at(2)));
+    }
+    else if (p[0] == "fifo")
+        EXPECT_EQ(::mkfifo(target.c_str(), 0600), 0) << target;
+    else if (p[0] == "loop")
+        fs::create_symlink(target, target);
     else
         ADD_FAILURE() << "unknown setup step '" << step << "'";
     return {};

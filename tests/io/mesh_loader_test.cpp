@@ -6,11 +6,20 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fcntl.h>
 #include <fstream>
 #include <iterator>
-#include <utility>
-
 #include <sstream>
+#include <sys/stat.h>
+#include <thread>
+#include <unistd.h>
+#include <utility>
 
 using namespace hcd;
 
@@ -430,4 +439,353 @@ TEST(MeshLoader, ColladaIndexListsHoldWholeNumbers)
                 << e.what();
         }
     }
+}
+
+namespace
+{
+// A COLLADA file of one box (8 vertices, 12 triangles), its scene nodes and library nodes given.
+std::string colladaBox(const std::string &sceneNodes, const std::string &libraryNodes = "",
+                       const std::string &floatArray = "<float_array id=\"PA\" count=\"24\">",
+                       const std::string &accessor = "<accessor count=\"8\" source=\"#PA\" stride=\"3\">")
+{
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+           "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+           "<asset><up_axis>Z_UP</up_axis></asset>\n" +
+           (libraryNodes.empty() ? "" : "<library_nodes>" + libraryNodes + "</library_nodes>") +
+           "\n<library_visual_scenes><visual_scene id=\"S1\">" + sceneNodes +
+           "</visual_scene></library_visual_scenes>\n"
+           "<library_geometries><geometry id=\"G1\"><mesh>\n<source id=\"P\">" +
+           floatArray + "4 -5 -5 6 -5 -5 4 5 -5 6 5 -5 4 -5 5 6 -5 5 4 5 5 6 5 5</float_array>\n<technique_common>" +
+           accessor +
+           "<param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/>"
+           "</accessor></technique_common></source>\n"
+           "<vertices id=\"V\"><input semantic=\"POSITION\" source=\"#P\"/></vertices>\n"
+           "<triangles count=\"12\"><input offset=\"0\" semantic=\"VERTEX\" source=\"#V\"/><p>0 2 3 0 3 1 4 5 7 4 "
+           "7 6 0 1 5 0 5 4 2 6 7 2 7 3 0 4 6 0 6 2 1 3 7 1 7 5</p></triangles>\n"
+           "</mesh></geometry></library_geometries>\n<scene><instance_visual_scene url=\"#S1\"/></scene>\n"
+           "</COLLADA>\n";
+}
+
+const std::string kBoxNode = "<node id=\"N1\"><instance_geometry url=\"#G1\"/></node>";
+
+// The message of the InputError loading `text` as `format` throws ("" when it loads).
+std::string loadError(const std::string &text, const std::string &format, const MeshLimits &limits = {})
+{
+    try
+    {
+        loadMeshFromMemory(text, format, MeshRole::Robot3D, "mesh", limits);
+    }
+    catch (const InputError &e)
+    {
+        return e.what();
+    }
+    return {};
+}
+
+std::string repeat(const std::string &text, int times)
+{
+    std::string out;
+    for (int i = 0; i < times; ++i)
+        out += text;
+    return out;
+}
+}  // namespace
+
+// Found by a hostile-input probe: assimp 5.2 expands <instance_node> references recursively, so a
+// node that instances itself (directly, or L1 -> L2 -> L1) overflowed the stack (SIGSEGV), as did
+// 20,000 nested <node>s and a chain of instances as deep. All are refused before assimp reads them.
+TEST(MeshLoader, ColladaInstanceCyclesAndDeepNestingAreRefused)
+{
+    const std::string instanceL1 = "<node id=\"N1\"><instance_node url=\"#L1\"/></node>";
+    const std::pair<std::string, std::string> refused[] = {
+        {colladaBox(instanceL1, "<node id=\"L1\"><instance_geometry url=\"#G1\"/><instance_node url=\"#L1\"/></node>"),
+         "mesh:4: malformed COLLADA file: its node 'L1' contains itself through <instance_node> references"},
+        {colladaBox(instanceL1, "<node id=\"L1\"><instance_geometry url=\"#G1\"/><instance_node url=\"#L2\"/></node>"
+                                "<node id=\"L2\"><instance_node url=\"#L1\"/></node>"),
+         "contains itself through <instance_node> references"},
+        // Through a child node, and through an id spelled with a character reference.
+        {colladaBox(instanceL1, "<node id=\"L1\"><node id=\"C\"><instance_node url=\"#L1\"/></node></node>"),
+         "contains itself"},
+        {colladaBox(instanceL1, "<node id=\"L&#49;\" name=\"x id='Z'\"><instance_node url=\"#L1\"/></node>"),
+         "contains itself"},
+        // A scene node instancing itself by name, as assimp resolves an id it does not find.
+        {colladaBox("<node name=\"Named\"><instance_geometry url=\"#G1\"/><instance_node url=\"#Named\"/></node>"),
+         "its node 'Named' contains itself"},
+        {colladaBox(repeat("<node>", 20000) + "<instance_geometry url=\"#G1\"/>" + repeat("</node>", 20000)),
+         "mesh:5: malformed COLLADA file: its elements nest deeper than 1000 levels (the limit)"},
+        {colladaBox(kBoxNode + "<extra>" + repeat("<a>", 1000) + repeat("</a>", 1000) + "</extra>"),
+         "its elements nest deeper than 1000 levels"},
+    };
+    for (const auto &[text, message] : refused)
+    {
+        const std::string error = loadError(text, "dae");
+        EXPECT_NE(error.find(message), std::string::npos) << error;
+        EXPECT_THROW(loadMesh(test::writeTempFile("refused.dae", text), MeshRole::Environment), InputError);
+    }
+    // A chain of 2,000 library nodes each instancing the next, and 24 nodes each instancing the
+    // previous twice (2^24 copies, 4 GB in assimp before it failed).
+    std::string chain = "<node id=\"C0\"><instance_geometry url=\"#G1\"/></node>";
+    for (int i = 1; i < 2000; ++i)
+        chain +=
+            "<node id=\"C" + std::to_string(i) + "\"><instance_node url=\"#C" + std::to_string(i - 1) + "\"/></node>";
+    EXPECT_NE(loadError(colladaBox("<node><instance_node url=\"#C1999\"/></node>", chain), "dae")
+                  .find("its node hierarchy, with instanced nodes expanded, is deeper than 1000 levels"),
+              std::string::npos);
+    std::string doubling = "<node id=\"E0\"><instance_geometry url=\"#G1\"/></node>";
+    for (int i = 1; i < 25; ++i)
+        doubling += "<node id=\"E" + std::to_string(i) + "\"><instance_node url=\"#E" + std::to_string(i - 1) +
+                    "\"/><instance_node url=\"#E" + std::to_string(i - 1) + "\"/></node>";
+    EXPECT_NE(loadError(colladaBox("<node><instance_node url=\"#E24\"/></node>", doubling), "dae")
+                  .find("its scene has more than 100000 nodes with instanced nodes expanded"),
+              std::string::npos);
+    // Within the bounds, instances, nesting and comments load as before: the box instanced twice,
+    // 900 levels deep, and cycles in comments or CDATA that XML readers skip.
+    const std::string twice =
+        colladaBox("<node><instance_node url=\"#L1\"/></node><node><matrix>1 0 0 20 0 1 0 0 0 0 1 0 0 0 0 1</matrix>"
+                   "<instance_node url=\"#L1\"/></node><!-- <node id=\"X\"><instance_node url=\"#X\"/></node> -->"
+                   "<extra><![CDATA[<node id=\"Y\"><instance_node url=\"#Y\"/></node>]]></extra>",
+                   "<node id=\"L1\" name=\"L1\"><instance_geometry url=\"#G1\"/></node>");
+    EXPECT_EQ(loadMeshFromMemory(twice, "dae", MeshRole::Environment, "twice.dae").mesh->triangleCount(), 24u);
+    const std::string deep =
+        colladaBox(repeat("<node>", 900) + "<instance_geometry url=\"#G1\"/>" + repeat("</node>", 900));
+    EXPECT_EQ(loadMeshFromMemory(deep, "dae", MeshRole::Environment, "deep.dae").mesh->triangleCount(), 12u);
+}
+
+// Found by a hostile-input probe: assimp keeps `count` values of a COLLADA array and reads what
+// its accessor asks for, so a <float_array count="6"> read by an accessor of 8 vertices of stride 3
+// read past its buffer (garbage vertices; valgrind: invalid read), and an accessor of 4,000,000
+// vertices over 3 values crashed.
+TEST(MeshLoader, ColladaAccessorsStayWithinTheirArrays)
+{
+    EXPECT_EQ(loadError(colladaBox(kBoxNode), "dae"), "");
+    const std::pair<std::string, std::string> refused[] = {
+        {colladaBox(kBoxNode, "", "<float_array id=\"PA\" count=\"6\">"),
+         "mesh:8: malformed COLLADA file: an accessor of '#PA' reading 8 elements of stride 3 from offset 0, 24 "
+         "values, past the array's count of 6"},
+        {colladaBox(kBoxNode, "", "<float_array id=\"PA\" count=\"3\">",
+                    "<accessor count=\"4000000\" source=\"#PA\" stride=\"3\">"),
+         "mesh:8: malformed COLLADA file: an accessor of '#PA' reading 4000000 elements"},
+        {colladaBox(kBoxNode, "", "<float_array id=\"PA\" count=\"24\">",
+                    "<accessor count=\"8\" offset=\"1\" source=\"#PA\" stride=\"3\">"),
+         "25 values, past the array's count of 24"},
+        // Three parameters read from each element of stride 1: the last reads two values further.
+        {colladaBox(kBoxNode, "", "<float_array id=\"PA\" count=\"24\">",
+                    "<accessor count=\"23\" source=\"#PA\" stride=\"1\">"),
+         "25 values, past the array's count of 24"},
+        {colladaBox(kBoxNode, "", "<float_array id=\"PA\" count=\"30\">"),
+         "mesh:7: malformed COLLADA file: an array 'PA' holding 24 values, fewer than its count of 30"},
+        {colladaBox(kBoxNode, "", "<float_array id=\"PA\" count=\"24\">",
+                    "<accessor count=\"-8\" source=\"#PA\" stride=\"3\">"),
+         "an accessor whose count '-8' is not a whole number"},
+    };
+    for (const auto &[text, message] : refused)
+    {
+        const std::string error = loadError(text, "dae");
+        EXPECT_NE(error.find(message), std::string::npos) << error;
+    }
+    // An accessor reading exactly to its array's end loads.
+    EXPECT_EQ(loadError(colladaBox(kBoxNode, "", "<float_array id=\"PA\" count=\"24\">",
+                                   "<accessor count=\"22\" source=\"#PA\" stride=\"1\">"),
+                        "dae"),
+              "");
+}
+
+// Found by a hostile-input probe: a mesh path naming a pipe (mkfifo) hung the loader, which opened
+// it and waited for a writer. Pipes, devices and sockets are refused before opening. Should the
+// loader open the pipe, a writer that opens and closes it ends the wait, so the test fails instead
+// of hanging.
+TEST(MeshLoader, MeshFilesThatAreNotRegularFilesAreRefusedBeforeOpening)
+{
+    const std::string pipe = test::writeTempFile("pipe_mesh.obj", "") + ".fifo";
+    std::remove(pipe.c_str());
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    std::atomic<bool> finished{false};
+    std::thread writer([&] {
+        while (!finished)
+        {
+            const int fd = ::open(pipe.c_str(), O_WRONLY | O_NONBLOCK);
+            if (fd >= 0)
+            {
+                ::close(fd);
+                return;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+    });
+    std::string error;
+    try
+    {
+        loadMesh(pipe, MeshRole::Environment);
+    }
+    catch (const InputError &e)
+    {
+        error = e.what();
+    }
+    finished = true;
+    writer.join();
+    std::remove(pipe.c_str());
+    EXPECT_NE(error.find(pipe + ": is not a regular file (a device, pipe or socket); a mesh file is expected"),
+              std::string::npos)
+        << error;
+    for (const std::string device : {"/dev/null", "/dev/zero"})
+        try
+        {
+            loadMesh(device, MeshRole::Environment);
+            ADD_FAILURE() << "accepted " << device;
+        }
+        catch (const InputError &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+        }
+}
+
+// Found by a hostile-input probe: assimp's PLY reader sizes a list by its count before reading the
+// values, so a 200-byte ASCII file with a face list count of 500,000,000 allocated 4 GB. Lists are
+// bounded by kMaxFaceVertices, in ASCII and binary data, and lists cut short are refused.
+TEST(MeshLoader, PlyListsAreBoundedAndComplete)
+{
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                               "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                               "0 0 0\n1 0 0\n0 1 0\n";
+    EXPECT_EQ(loadError(header + "3 0 1 2\n", "ply"), "");
+    const std::pair<std::string, std::string> refused[] = {
+        {header + "500000000 0 1 2\n",
+         "mesh:13: malformed PLY file: its list 'vertex_indices' of face element 0 is a list of 500000000 values, "
+         "above the limit of 32767"},
+        {header + "255 0 1 2\n", "mesh:13: malformed PLY file: its list 'vertex_indices' of face element 0 announces "
+                                 "255 values but holds 3"},
+        {header + "3 0 1 x\n", "mesh:13: malformed PLY file: its value 'x' in the list"},
+        {header.substr(0, header.size() - 6) + "0 1\n3 0 1 2\n",
+         "mesh:12: malformed PLY file: its line has no value for 'z' of vertex element 2"},
+        {header.substr(0, header.size() - 6), "malformed PLY file: its data ends after 2 of its 3 vertex elements"},
+    };
+    for (const auto &[text, message] : refused)
+    {
+        const std::string error = loadError(text, "ply");
+        EXPECT_NE(error.find(message), std::string::npos) << error;
+    }
+    // Binary data, both byte orders and "\r\n" header lines: a tetrahedron loads, a list count of
+    // 40,000 or a negative one is refused, as is data cut short.
+    for (const bool bigEndian : {false, true})
+        for (const std::string lineEnd : {"\n", "\r\n"})
+        {
+            std::string binaryHeader = "ply\nformat binary_" + std::string(bigEndian ? "big" : "little") +
+                                       "_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty "
+                                       "float z\nelement face 4\nproperty list int int vertex_indices\nend_header";
+            for (std::size_t at = binaryHeader.find('\n'); at != std::string::npos;
+                 at = binaryHeader.find('\n', at + lineEnd.size()))
+                binaryHeader.replace(at, 1, lineEnd);
+            binaryHeader += lineEnd;
+            const auto bytes = [&](const void *value, std::size_t size) {
+                std::string out(static_cast<const char *>(value), size);
+                if (bigEndian)
+                    std::reverse(out.begin(), out.end());
+                return out;
+            };
+            const auto face = [&](std::int32_t count, std::vector<std::int32_t> indices) {
+                std::string out = bytes(&count, 4);
+                for (const std::int32_t i : indices)
+                    out += bytes(&i, 4);
+                return out;
+            };
+            std::string vertices;
+            for (const float v : {0.f, 0.f, 0.f, 4.f, 0.f, 0.f, 0.f, 4.f, 0.f, 0.f, 0.f, 4.f})
+                vertices += bytes(&v, 4);
+            const std::string faces = face(3, {0, 2, 1}) + face(3, {0, 1, 3}) + face(3, {0, 3, 2});
+            const std::string tet = binaryHeader + vertices + faces + face(3, {1, 2, 3});
+            EXPECT_EQ(loadMeshFromMemory(tet, "ply", MeshRole::Environment, "tet.ply").mesh->triangleCount(), 4u)
+                << bigEndian << lineEnd.size();
+            EXPECT_NE(loadError(binaryHeader + vertices + faces + face(40000, {1, 2, 3}), "ply")
+                          .find("malformed PLY file: its list 'vertex_indices' of face element 3 is a list of 40000 "
+                                "values, above the limit of 32767"),
+                      std::string::npos);
+            EXPECT_NE(
+                loadError(binaryHeader + vertices + faces + face(-3, {1, 2, 3}), "ply").find("has a negative count"),
+                std::string::npos);
+            EXPECT_NE(loadError(binaryHeader + vertices + faces + face(3, {1, 2}), "ply")
+                          .find("its data ends after 3 of its 4 face elements"),
+                      std::string::npos);
+        }
+}
+
+// Found by a hostile-input probe: a PLY vertex element without an x property loaded, every x read
+// as 0.
+TEST(MeshLoader, PlyVerticesNeedXYZ)
+{
+    for (const char *axis : {"x", "y", "z"})
+    {
+        const std::string text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float " +
+                                 std::string(axis == std::string("x") ? "w" : "x") + "\nproperty float " +
+                                 std::string(axis == std::string("y") ? "w" : "y") + "\nproperty float " +
+                                 std::string(axis == std::string("z") ? "w" : "z") +
+                                 "\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                 "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        EXPECT_NE(
+            loadError(text, "ply")
+                .find(std::string("mesh:3: malformed PLY file: its vertex element has no '") + axis + "' property"),
+            std::string::npos)
+            << axis;
+    }
+}
+
+// Found by a hostile-input probe: assimp's OFF reader replaced a face index out of range by the
+// last vertex's, silently (OBJ and PLY refuse such an index), and read a missing index as 0.
+TEST(MeshLoader, OffFaceIndicesMustNameVertices)
+{
+    const std::string head = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+    EXPECT_EQ(loadError(head + "3 0 1 2\n", "off"), "");
+    const std::pair<std::string, std::string> refused[] = {
+        {head + "3 0 1 5\n", "mesh:6: malformed OFF file: its face has the vertex index 5, out of range for its 3 "
+                             "vertices (numbered from 0)"},
+        {head + "3 0 1\n", "mesh:6: malformed OFF file: its face of 3 vertices has only 2 vertex indices"},
+        {head + "3 0 -1 2\n", "mesh:6: malformed OFF file: its face of 3 vertices has '-' where vertex index 2"},
+        // Comments and blank lines in the header, and faces the reader skips, are read as it reads them.
+        {"# c\nOFF\n\n# 3 vertices\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n0\n3 0 1 2\n3 0 1 3\n", "mesh:11: malformed OFF"},
+        {head + "3 0 1 2 " + std::string(5000, ' ') + "\n", "mesh:6: malformed OFF file: its line of 5008 bytes"},
+    };
+    for (const auto &[text, message] : refused)
+    {
+        const std::string error = loadError(text, "off");
+        EXPECT_NE(error.find(message), std::string::npos) << error;
+    }
+}
+
+// Found by a hostile-input probe: triangulating a face of n vertices takes assimp about n^2 steps,
+// so eight 32,000-vertex OBJ faces (2.8 MB) took over a minute. The sum of n^2 is bounded by
+// kPolygonWorkPerTriangle per triangle allowed.
+TEST(MeshLoader, PolygonTriangulationWorkIsBounded)
+{
+    std::string polygon;
+    std::string face = "f";
+    for (int i = 0; i < 200; ++i)
+    {
+        const double angle = 2 * 3.141592653589793 * i / 200;
+        polygon += "v " + std::to_string(std::cos(angle)) + " " + std::to_string(std::sin(angle)) + " 0\n";
+        face += " " + std::to_string(i + 1);
+    }
+    polygon += face + "\n";
+    EXPECT_EQ(loadMeshFromMemory(polygon, "obj", MeshRole::Environment, "polygon.obj").mesh->triangleCount(), 198u);
+    MeshLimits limits;
+    limits.maxTriangles = 500;  // 25,000 steps; the face takes 40,000
+    EXPECT_NE(loadError(polygon, "obj", limits)
+                  .find("mesh: the mesh's polygons are too large to triangulate: the sum over its faces of more than "
+                        "three vertices of (vertices per face)^2 is 40000, above the limit of 25000"),
+              std::string::npos);
+}
+
+// Found by a hostile-input probe: a robot near the end of the float range (3e38, finite) was
+// refused as "non-finite", because the float sum of its vertices for the centring overflowed.
+TEST(MeshLoader, RobotNearTheFloatRangeEndIsCentred)
+{
+    const std::string far = "v 3e38 0 0\nv 3e38 1 0\nv 3e38 0 1\nf 1 2 3\n";
+    const LoadedMesh robot = loadMeshFromMemory(far, "obj", MeshRole::Robot3D, "far.obj");
+    EXPECT_FLOAT_EQ(float(robot.centeringShift.x()), 3e38f);
+    EXPECT_TRUE(robot.mesh->bounds().max.allFinite());
+    // Coordinates that the centring itself takes past the float range are named as such.
+    EXPECT_NE(loadError("v 3e38 0 0\nv -3e38 1 0\nv -3e38 0 1\nf 1 2 3\n", "obj")
+                  .find("the robot's vertex coordinates, centred on their mean, exceed single precision"),
+              std::string::npos);
+    EXPECT_NE(
+        loadError("v inf 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", "obj").find("mesh has a non-finite vertex coordinate"),
+        std::string::npos);
 }

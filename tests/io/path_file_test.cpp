@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <sstream>
+#include <sys/stat.h>
 
 using namespace hcd;
 
@@ -200,4 +202,93 @@ TEST(PathFile, NormalisedQuaternionsReadBackBitForBit)
     for (std::size_t i = 0; i < first.size(); ++i)
         for (std::size_t k = 0; k < 7; ++k)
             ASSERT_EQ(second[i].values[k], first[i][k]) << "pose " << i << " value " << k;
+}
+
+namespace
+{
+// The message of the InputError `read` throws, or "" when it throws none.
+template <typename Read>
+std::string errorOf(Read read)
+{
+    try
+    {
+        read();
+    }
+    catch (const InputError &e)
+    {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+// Found by a probe: /dev/zero as --states grew to gigabytes and died of std::bad_alloc, and a FIFO
+// blocked for ever. Only regular files are read, and no more than kMaxPoseFileBytes.
+TEST(PathFile, OnlyRegularFilesWithinTheSizeBoundAreRead)
+{
+    for (const char *device : {"/dev/zero", "/dev/urandom"})
+    {
+        EXPECT_NE(errorOf([&] {
+                      readPoses(device, false);
+                  }).find(std::string(device) + ": is not a regular file (a device, pipe or socket); a pose file"),
+                  std::string::npos)
+            << device;
+        EXPECT_NE(errorOf([&] { readMotions(device, false); }).find("is not a regular file"), std::string::npos);
+        EXPECT_NE(errorOf([&] { readPathMotions(device, false); }).find("is not a regular file"), std::string::npos);
+    }
+    // A pipe with no writer: refused at once, never opened for a read that would wait.
+    const std::string fifo =
+        std::filesystem::path(test::writeTempFile("fifo.path", "")).replace_filename("fifo").string();
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_NE(errorOf([&] { readPoses(fifo, false); }).find(fifo + ": is not a regular file"), std::string::npos);
+    std::filesystem::remove(fifo);
+    // A symbolic link to itself: an InputError naming it, not a filesystem_error.
+    const std::string loop = fifo + ".loop";
+    std::filesystem::remove(loop);
+    std::filesystem::create_symlink(loop, loop);
+    EXPECT_NE(errorOf([&] { readPoses(loop, false); }).find(loop + ": cannot open pose file"), std::string::npos);
+    std::filesystem::remove(loop);
+    // One byte above the bound, sparse on disk: refused before it is read.
+    const std::string big = test::writeTempFile("big.path", "0 0 0\n");
+    std::filesystem::resize_file(big, kMaxPoseFileBytes + 1);
+    EXPECT_NE(errorOf([&] { readPoses(big, true); })
+                  .find(big + ": the pose file has " + std::to_string(kMaxPoseFileBytes + 1) +
+                        " bytes, above the limit of " + std::to_string(kMaxPoseFileBytes) + " bytes"),
+              std::string::npos);
+    std::filesystem::remove(big);
+    EXPECT_NE(errorOf([] {
+                  readPoses("/nonexistent/poses.path", true);
+              }).find("/nonexistent/poses.path: cannot open pose file"),
+              std::string::npos);
+}
+
+// A UTF-8 byte-order mark, as some editors write, is skipped as the .cfg reader skips it; it was
+// read as part of the first number ("'\ufeff0' is not a number").
+TEST(PathFile, ByteOrderMarkIsSkipped)
+{
+    const std::string path = test::writeTempFile("bom.path", "\xEF\xBB\xBF"
+                                                             "1 2 3\n4 5 6\n");
+    const auto poses = readPoses(path, true);
+    ASSERT_EQ(poses.size(), 2u);
+    EXPECT_EQ(poses[0].values, (std::vector<double>{1, 2, 3}));
+    EXPECT_EQ(poses[0].line, 1);
+    // Only at the very start: elsewhere it is not a number.
+    EXPECT_THROW(parsePoses("1 2 3\n\xEF\xBB\xBF"
+                            "4 5 6\n",
+                            "p.txt", true),
+                 InputError);
+}
+
+// A word quoted in a message shows its control bytes and invalid UTF-8 escaped (a NUL cut the
+// message short, an escape sequence reached the terminal), and no more than 60 bytes of it.
+TEST(PathFile, QuotedWordsAreEscapedAndShortened)
+{
+    const std::string binary("\x00\x01\x1b[2Jx\x89 0 0\n", 13);
+    EXPECT_EQ(errorOf([&] { parsePoses(binary, "bin.path", true); }),
+              "bin.path:1: '\\x00\\x01\\x1b[2Jx\\x89' is not a number");
+    EXPECT_EQ(errorOf([] { parsePoses("1 2 \xc3\xa9\n", "p.txt", true); }), "p.txt:1: '\xc3\xa9' is not a number");
+    const std::string longWord(5000, '7');
+    EXPECT_EQ(errorOf([&] { parsePoses("1 2 " + longWord + "x\n", "p.txt", true); }),
+              "p.txt:1: '" + longWord.substr(0, 60) + "...' is not a number");
 }

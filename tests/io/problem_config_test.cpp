@@ -182,3 +182,56 @@ TEST(ProblemConfig, MissingFileIsAnInputError)
 {
     EXPECT_THROW(readProblemConfig("/nonexistent/problem.cfg"), InputError);
 }
+
+// Found by a probe: volume.min.x = -1e308 with volume.max.x = 1e308 was accepted, and its width
+// (infinite) failed later in OMPL without a file or line.
+TEST(ProblemConfig, VolumeWidthMustBeFinite)
+{
+    const std::string wide = std::string(kMinimal) + "volume.min.x = -1e308\nvolume.max.x = 1e308\n";
+    EXPECT_NE(errorOf(wide).find("bad.cfg:10: volume.x is too wide: volume.max.x - volume.min.x overflows to infinity"),
+              std::string::npos)
+        << errorOf(wide);
+    EXPECT_EQ(errorOf(std::string(kMinimal) + "volume.min.x = -8e307\nvolume.max.x = 8e307\n"), "");
+}
+
+// --time 1e10 timed out at once (OMPL's nanosecond clock overflows); a .cfg's time_limit is the
+// same limit for bench.
+TEST(ProblemConfig, TimeLimitBeyondOmplsClockIsRefused)
+{
+    EXPECT_NE(errorOf(std::string(kMinimal) + "[benchmark]\ntime_limit = 1e10\n")
+                  .find("bad.cfg:11: time_limit needs at most 1e9 seconds"),
+              std::string::npos);
+    EXPECT_EQ(errorOf(std::string(kMinimal) + "[benchmark]\ntime_limit = 1e9\n"), "");
+}
+
+// Only regular files within kMaxProblemFileBytes are read (a device such as /dev/zero would be
+// read without end, a symbolic link loop gave a bare filesystem_error).
+TEST(ProblemConfig, OnlyRegularFilesWithinTheSizeBoundAreRead)
+{
+    auto messageOf = [](const std::string &path) -> std::string {
+        try
+        {
+            readProblemConfig(path);
+        }
+        catch (const InputError &e)
+        {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_NE(messageOf("/dev/zero").find("/dev/zero: is not a regular file (a device, pipe or socket)"),
+              std::string::npos);
+    const std::string big = test::writeTempFile("big.cfg", kMinimal);
+    std::filesystem::resize_file(big, kMaxProblemFileBytes + 1);
+    EXPECT_NE(messageOf(big).find(big + ": the problem file (.cfg) has " + std::to_string(kMaxProblemFileBytes + 1) +
+                                  " bytes, above the limit of " + std::to_string(kMaxProblemFileBytes) + " bytes"),
+              std::string::npos)
+        << messageOf(big);
+    std::filesystem::remove(big);
+    const std::string loop = big + ".loop";
+    std::filesystem::remove(loop);
+    std::filesystem::create_symlink(loop, loop);
+    EXPECT_NE(messageOf(loop).find(loop + ": cannot open problem file (.cfg)"), std::string::npos) << messageOf(loop);
+    std::filesystem::remove(loop);
+    EXPECT_NE(messageOf("/nonexistent/problem.cfg").find("/nonexistent/problem.cfg: cannot open"), std::string::npos);
+}

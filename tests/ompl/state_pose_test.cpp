@@ -156,3 +156,23 @@ TEST(StatePose, InterpolationTurnIsTheAngleOmplsInterpolationSweeps)
     v->as<ompl::base::SE3StateSpace::StateType>()->rotation().w = 1.0 + 1e-6;
     EXPECT_TRUE(std::isinf(interpolationTurn(u.get(), v.get(), false)));
 }
+
+// A row's yaw is wrapped into SO2's bounds [-pi, pi) (OMPL asserts on states outside them): a row's
+// +pi is -pi, so from yaw 0 OMPL turns clockwise through -pi/2 to it, as to -pi, and
+// counterclockwise through about +pi/2 to a yaw just short of +pi.
+TEST(StatePose, HalfTurnsTurnTheWayOmplsBoundsSay)
+{
+    const auto space = std::make_shared<ompl::base::SE2StateSpace>();
+    ompl::base::ScopedState<> from(space), to(space), middle(space);
+    const double start[3] = {0.0, 0.0, 0.0};
+    poseValuesToState(start, true, from.get());
+    for (const double end : {M_PI, -M_PI, std::nextafter(M_PI, 0.0)})
+    {
+        const double row[3] = {0.0, 0.0, end};
+        poseValuesToState(row, true, to.get());
+        EXPECT_TRUE(space->satisfiesBounds(to.get())) << end;
+        space->interpolate(from.get(), to.get(), 0.5, middle.get());
+        const double expected = end < M_PI ? end / 2.0 : -M_PI / 2.0;
+        EXPECT_NEAR(middle->as<ompl::base::SE2StateSpace::StateType>()->getYaw(), expected, 1e-15) << end;
+    }
+}

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Output files that appear whole or not at all, and the checks made before any work is done.
+// Output files that appear whole or not at all, the checks made before any work is done, and
+// input files read whole within a bound.
 #pragma once
 
+#include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -44,4 +46,12 @@ private:
     folder refuses new files (checked by creating and removing a temporary file there), or when it
     is one of `inputs` (compared as the same file on disk, so "./a/../a.cfg" counts). */
 void checkOutputPath(const std::string &path, const std::string &option, const std::vector<std::string> &inputs);
+
+/** \brief The whole of the text input file `path` (a problem file, a pose file), at most `maxBytes`.
+    Only regular files are read: a folder would read as empty, a device such as /dev/zero without
+    end, and a pipe would wait for a writer forever. Throws InputError naming `path` when it is a
+    folder ("is a folder, not a WHAT"), not a regular file, cannot be opened (missing, unreadable, a
+    loop of symbolic links: "cannot open WHAT (reason)"), or holds more than `maxBytes` bytes.
+    `what` names the kind of file in the messages: "pose file", "problem file (.cfg)". */
+std::string readInputFile(const std::string &path, const std::string &what, std::uintmax_t maxBytes);
 }  // namespace hcd

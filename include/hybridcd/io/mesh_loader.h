@@ -16,6 +16,7 @@
 
 #include "hybridcd/geometry/triangle_mesh.h"
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -36,6 +37,26 @@ enum class MeshRole
 
 /// Bounding-box diagonal below which a mesh is imported without assimp's vertex joining.
 constexpr double kTinyMeshExtent = 1e-3;
+
+/// Deepest nesting accepted in a COLLADA file, for its XML elements and for its node hierarchy with
+/// instanced nodes (<instance_node>) expanded: assimp walks both recursively, at 1-2 KB of stack
+/// per level (5,000 levels overflow a 4 MB stack, 10,000 an 8 MB one). OMPL.app's files nest 12
+/// elements deep at most.
+constexpr std::size_t kMaxColladaDepth = 1000;
+
+/// Most nodes accepted in a COLLADA scene, counted with instanced nodes expanded: assimp builds a
+/// node of over 1 KB for each (a file doubling one node 24 times asked for 33 million, 4 GB).
+/// OMPL.app's largest scene (Apartment_env.dae) has 167.
+constexpr std::size_t kMaxColladaNodes = 100'000;
+
+/// Most vertices of one face: assimp's own limit (AI_MAX_FACE_INDICES), and the bound on the
+/// length of a PLY list, which assimp allocates before reading its values.
+constexpr std::size_t kMaxFaceVertices = 32767;
+
+/// Triangulating a face of n vertices costs assimp about n^2 steps (a 20,000-vertex face takes
+/// seconds): the sum of n^2 over faces of more than three vertices is bounded by this many per
+/// triangle allowed (MeshLimits::maxTriangles), 1e8 by default (about a second).
+constexpr std::size_t kPolygonWorkPerTriangle = 50;
 
 /// Bounds on what loadMesh accepts, so that a huge or hostile file fails at once with a message
 /// instead of exhausting memory. Peak memory is about 0.7 KB per triangle with the obb checker
@@ -79,8 +100,10 @@ private:
 };
 
 /// Loads any format assimp reads (COLLADA, OBJ, STL, PLY, OFF, ...). Throws InputError naming the
-/// file when it is missing, a folder, unreadable, beyond `limits`, holds no triangle, or only
-/// degenerate ones. Non-manifold meshes load: their closed components are solids, the rest surfaces.
+/// file when it is missing, a folder or another file that is not a regular one (a pipe, device or
+/// socket), unreadable, beyond `limits` or the bounds above, malformed in a way assimp would not
+/// survive or would read wrongly, holds no triangle, or only degenerate ones. Non-manifold meshes load: their closed
+/// components are solids, the rest surfaces.
 LoadedMesh loadMesh(const std::string &path, MeshRole role, const MeshLimits &limits = {});
 
 /// Loads a mesh file's contents held in memory, with the same post-processing, placement, limits

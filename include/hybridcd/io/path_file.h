@@ -4,6 +4,7 @@
 
 #include "hybridcd/io/pose_codec.h"
 
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 #include <string_view>
@@ -12,6 +13,10 @@
 
 namespace hcd
 {
+/// The largest pose, motion or path file read: 256 MiB, over a million poses at full precision.
+/// Larger files are refused rather than held in memory whole.
+constexpr std::uintmax_t kMaxPoseFileBytes = std::uintmax_t(256) << 20;
+
 /// The numbers of one pose line, in file order (7 for SE3, 3 for SE2): a pose row (pose_codec.h).
 struct PoseRecord
 {
@@ -19,10 +24,13 @@ struct PoseRecord
     int line = 0;
 };
 
-/// Reads poses; blank lines and '#' comments are skipped, columns after the pose are ignored.
+/// Reads poses; blank lines and '#' comments are skipped, columns after the pose are ignored, and
+/// a UTF-8 byte-order mark at the start is skipped.
 /// Throws InputError("FILE:LINE: ...") on a short line, a malformed or non-finite number, or a
 /// quaternion whose norm is 0 or differs from 1 by more than kQuaternionNormTolerance; accepted
-/// quaternions are normalised (normaliseRowQuaternion). A folder or a file that cannot be opened is an InputError too.
+/// quaternions are normalised (normaliseRowQuaternion). A folder, a file that is not a regular file
+/// (a device, a pipe), one that cannot be opened, or one above kMaxPoseFileBytes is an InputError
+/// too (readInputFile, atomic_file.h).
 /// With `robots` > 1 (a scene problem), each line holds that many poses one after the other, and
 /// each record all of them.
 std::vector<PoseRecord> readPoses(const std::string &path, bool planar, std::size_t robots = 1);

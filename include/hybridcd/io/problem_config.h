@@ -5,6 +5,7 @@
 #include "hybridcd/geometry/shape.h"
 #include "hybridcd/io/planner_request.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -58,6 +59,14 @@ struct ObstacleSpec
     ConfigPose pose;  ///< world-from-obstacle, as a start is written (identity when not given)
 };
 
+/// The largest problem file read: 16 MiB (OMPL.app's are under 2 KB). Larger files are refused.
+constexpr std::uintmax_t kMaxProblemFileBytes = std::uintmax_t(16) << 20;
+
+/// The longest time limit accepted, in seconds (about 31 years): OMPL counts time in nanoseconds
+/// of the system clock, and a limit near 1e10 s overflows them into an immediate timeout. Applies
+/// to [benchmark] time_limit and to the command line's --time.
+constexpr double kMaxTimeLimitSeconds = 1e9;
+
 struct BenchmarkSettings
 {
     double timeLimit = 10.0;      ///< seconds per run
@@ -105,12 +114,13 @@ struct ProblemConfig
     std::vector<std::string> warnings;
 };
 
-/// Parses `path`. Throws InputError("FILE:LINE: ...") for unreadable files, folders, binary data,
+/// Parses `path`. Throws InputError("FILE:LINE: ...") for unreadable files, folders, files that are
+/// not regular files or are above kMaxProblemFileBytes (readInputFile, atomic_file.h), binary data,
 /// malformed lines, bad numbers, a key set twice in a section (or a planner setting given twice
 /// for the same planner), parameters of a planner that was never declared, non-positive benchmark
-/// limits, a rotation axis of zero length, an unknown `control` model or one that does not match
-/// the problem's dimension, and missing required keys. Unknown keys are not errors:
-/// each adds a line to ProblemConfig::warnings.
+/// limits or a time_limit above kMaxTimeLimitSeconds, a volume whose width overflows, a rotation axis of zero length,
+/// an unknown `control` model or one that does not match the problem's dimension, and missing required keys. Unknown
+/// keys are not errors: each adds a line to ProblemConfig::warnings.
 ProblemConfig readProblemConfig(const std::string &path);
 
 /// Parses the text of a .cfg as readProblemConfig does a file. `path` is where the text came from:
