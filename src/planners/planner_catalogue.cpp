@@ -48,8 +48,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 // Left out on purpose: TSRRT and VFRRT need a task space / vector field, XXL cannot plan without a
@@ -173,6 +176,33 @@ const std::map<std::string, ControlFactory> &controlCatalogue()
     return table;
 }
 
+// OMPL declares a numeric parameter's range as "low:step:high" (or "low:high") but sets any value:
+// a negative range makes RRTConnect step backwards. A value that is not a finite number, or is
+// below the low end, is refused; the high end is a suggestion only (a large world takes a larger
+// range than 10000).
+std::optional<std::string> belowSuggestedRange(ompl::base::Planner &planner, const std::string &key,
+                                               const std::string &value)
+{
+    const std::string suggestion = planner.params().getParam(key)->getRangeSuggestion();
+    const std::size_t colon = suggestion.find(':');
+    if (colon == std::string::npos)
+        return std::nullopt;  // booleans ("0,1"), enumerations, or none declared
+    char *end = nullptr;
+    const double low = std::strtod(suggestion.c_str(), &end);
+    if (end != suggestion.c_str() + colon || !std::isfinite(low))
+        return std::nullopt;
+    const std::string trimmed = trim(value);
+    const double number = std::strtod(trimmed.c_str(), &end);
+    if (trimmed.empty() || end != trimmed.c_str() + trimmed.size())
+        return std::nullopt;  // not a number at all: OMPL's own parse refuses it below
+    if (!std::isfinite(number))
+        return std::string("not a finite number");
+    if (number < low)
+        return "below its smallest meaningful value, " + suggestion.substr(0, colon) + " (OMPL suggests " + suggestion +
+               ")";
+    return std::nullopt;
+}
+
 // The display name and every parameter of `request`, through OMPL's ParamSet.
 void applyRequest(const PlannerRequest &request, const std::string &type, ompl::base::Planner &planner)
 {
@@ -191,6 +221,8 @@ void applyRequest(const PlannerRequest &request, const std::string &type, ompl::
         }
         const std::string rejected =
             "planner '" + type + "': invalid value '" + value + "' for parameter '" + key + "'";
+        if (const std::optional<std::string> problem = belowSuggestedRange(planner, key, value))
+            throw std::invalid_argument(rejected + ": " + *problem);
         bool accepted = false;
         try
         {

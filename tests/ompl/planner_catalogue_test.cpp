@@ -48,6 +48,35 @@ TEST(PlannerCatalogue, AppliesNamesAndParameters)
     EXPECT_EQ(std::stod(value), 10.0);
 }
 
+// OMPL sets any value a parameter is given; values below the low end of its declared range, or not
+// finite, are refused (a negative range makes RRTConnect step backwards). The high end is only a
+// suggestion: a range above OMPL's 10000 is kept.
+TEST(PlannerCatalogue, ValuesBelowTheDeclaredRangeAreRefused)
+{
+    for (const auto &[key, value] : std::vector<std::pair<std::string, std::string>>{
+             {"range", "-5"}, {"range", "nan"}, {"range", "inf"}, {"goal_bias", "-0.1"}})
+    {
+        try
+        {
+            makePlanner({"rrt", "", {{key, value}}}, se3());
+            ADD_FAILURE() << key << " = " << value << " was accepted";
+        }
+        catch (const std::invalid_argument &e)
+        {
+            const std::string message = e.what();
+            EXPECT_NE(message.find("invalid value '" + value + "' for parameter '" + key + "'"), std::string::npos)
+                << message;
+            EXPECT_TRUE(message.find("below") != std::string::npos || message.find("finite") != std::string::npos)
+                << message;
+        }
+    }
+    const auto planner = makePlanner({"rrtconnect", "", {{"range", "25000"}}}, se3());
+    std::string range;
+    ASSERT_TRUE(planner->params().getParam("range", range));
+    EXPECT_EQ(std::stod(range), 25000.0);
+    EXPECT_NO_THROW(makePlanner({"rrt", "", {{"goal_bias", "0"}, {"range", "0.5"}}}, se3()));
+}
+
 TEST(PlannerCatalogue, UnknownNamesListTheValidOnes)
 {
     try
