@@ -163,7 +163,8 @@ int runClearance(const CommandLine &cl, const CheckerCatalogue &checkers)
         const RigidTransform pose = transformOfRow(p.values.data(), problem.config.planar);
         const double d = checker->distance(pose, context);
         free += d > 0.0 ? 1 : 0;
-        out << (d > 0.0 ? d : -estimatePenetration(*checker, problem.scene, pose, context, 0).depth) << '\n';
+        // 0.0 - depth, not -depth: a pose within rounding of contact (depth 0) prints 0, not -0.
+        out << (d > 0.0 ? d : 0.0 - estimatePenetration(*checker, problem.scene, pose, context, 0).depth) << '\n';
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << out.str();
