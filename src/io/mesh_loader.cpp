@@ -19,6 +19,7 @@
 #include <string_view>
 #include <system_error>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 namespace hcd
@@ -247,6 +248,7 @@ bool forEachColladaArray(std::string_view data, const Visit &visit)
         if (close == std::string_view::npos)
             return false;
         visit(data.substr(nameEnd, close - nameEnd));
+        at = close;  // on from the tag's end: a search per tag to the same far '>' would be quadratic
     }
     return true;
 }
@@ -263,7 +265,11 @@ void forEachElementText(std::string_view data, std::string_view tag, const Visit
         if (after >= data.size() || (data[after] != '>' && !std::isspace(static_cast<unsigned char>(data[after]))))
             continue;  // another tag that starts with the same letters
         const std::size_t close = data.find('>', after);
-        if (close == std::string_view::npos || data[close - 1] == '/')
+        if (close == std::string_view::npos)
+            return;  // no later tag closes either
+        // On from the tag's end: a search per tag to the same far '>' would be quadratic.
+        at = close;
+        if (data[close - 1] == '/')
             continue;
         const std::size_t end = data.find('<', close + 1);
         visit(data.substr(close + 1, (end == std::string_view::npos ? data.size() : end) - close - 1));
@@ -530,7 +536,10 @@ std::optional<std::string> xmlAttribute(std::string_view attributes, std::string
         for (std::size_t k = 0; k < raw.size(); ++k)
         {
             const char c = raw[k];
-            const std::size_t semicolon = c == '&' ? raw.find(';', k) : std::string_view::npos;
+            // A reference read below is at most 10 characters ("#x" and 7 digits, or "quot"): the
+            // search for its ';' stops there, or a run of '&' would make it quadratic.
+            const std::size_t window = c == '&' ? raw.substr(k, 12).find(';') : std::string_view::npos;
+            const std::size_t semicolon = window == std::string_view::npos ? window : k + window;
             const bool entity = semicolon != std::string_view::npos && semicolon > k + 1;
             if (c == '\r' && k + 1 < raw.size() && raw[k + 1] == '\n')
                 continue;  // one blank for the pair
@@ -619,11 +628,12 @@ std::pair<int, std::string> colladaStructureProblem(std::string_view data)
         std::string id;
         std::uintmax_t count, values;
         std::size_t offset;
+        bool strings;  // Name_array, IDREF_array, SIDREF_array: assimp keeps no numbers for them
     };
     struct Accessor
     {
         std::string source;
-        std::uintmax_t count = 0, offset = 0, stride = 1, params = 0, paramValues = 0;
+        std::uintmax_t count = 0, offset = 0, stride = 1, params = 0, paramValues = 0, stringParams = 0;
         std::size_t tagOffset = 0;
     };
     std::vector<Frame> open;
@@ -683,7 +693,8 @@ std::pair<int, std::string> colladaStructureProblem(std::string_view data)
                     inValue = !blank;
                 }
             }
-            arrays.push_back({xmlAttribute(tag.attributes, "id").value_or(""), count, values, tag.offset});
+            const bool strings = tag.name == "Name_array" || tag.name == "IDREF_array" || tag.name == "SIDREF_array";
+            arrays.push_back({xmlAttribute(tag.attributes, "id").value_or(""), count, values, tag.offset, strings});
         }
         else if (tag.name == "accessor")
         {
@@ -709,7 +720,11 @@ std::pair<int, std::string> colladaStructureProblem(std::string_view data)
             Accessor &accessor = accessors[frame.accessor];
             ++accessor.params;
             if (const std::optional<std::string> type = xmlAttribute(tag.attributes, "type"))
+            {
                 accessor.paramValues += *type == "float4x4" ? 16 : 1;
+                const std::string kind = lowercase(*type);
+                accessor.stringParams += kind == "name" || kind == "idref" || kind == "sidref" ? 1 : 0;
+            }
         }
         if (!tag.selfClosing)
             open.push_back(frame);
@@ -721,8 +736,11 @@ std::pair<int, std::string> colladaStructureProblem(std::string_view data)
 
     // Arrays and their accessors. assimp keeps the array last read of an id; the smallest is used.
     std::unordered_map<std::string_view, std::uintmax_t> arrayCounts;
+    std::unordered_set<std::string_view> stringArrays;
     for (const Array &array : arrays)
     {
+        if (array.strings)
+            stringArrays.insert(array.id);
         if (array.values < array.count)
             return {lineAt(data, array.offset), "an array '" + array.id + "' holding " + std::to_string(array.values) +
                                                     " values, fewer than its count of " + std::to_string(array.count)};
@@ -732,11 +750,15 @@ std::pair<int, std::string> colladaStructureProblem(std::string_view data)
     }
     for (const Accessor &accessor : accessors)
     {
-        const auto array = accessor.source.size() > 1 && accessor.source[0] == '#'
+        const auto array = !accessor.source.empty() && accessor.source[0] == '#'
                                ? arrayCounts.find(std::string_view(accessor.source).substr(1))
                                : arrayCounts.end();
         if (array == arrayCounts.end() || accessor.count == 0)
             continue;  // assimp refuses an accessor of an unknown array when it uses one
+        // Numbers read from an array of names index assimp's empty number vector (a crash).
+        if (stringArrays.count(array->first) != 0 && (accessor.params == 0 || accessor.stringParams < accessor.params))
+            return {lineAt(data, accessor.tagOffset),
+                    "an accessor of '" + accessor.source + "' reading numbers from an array of names"};
         const std::uintmax_t elementValues = std::max({std::uintmax_t(1), accessor.params, accessor.paramValues});
         const std::uintmax_t read =
             std::max(saturatingAdd(accessor.offset, saturatingMul(accessor.count, accessor.stride)),
@@ -763,14 +785,17 @@ std::pair<int, std::string> colladaStructureProblem(std::string_view data)
     std::unordered_map<std::string_view, std::vector<std::size_t>> libraryById, sceneByIdOrName;
     for (std::size_t n = 0; n < nodes.size(); ++n)
     {
-        if (nodes[n].libraryLevel && !nodes[n].id.empty())
+        // assimp stores a library node without an id under "", finds scene nodes by name (a node
+        // without one matches "", a visual scene without one is named "Scene"), so those count too.
+        if (nodes[n].libraryLevel)
             libraryById[nodes[n].id].push_back(n);
         if (nodes[n].inScene)
         {
-            if (!nodes[n].id.empty())
-                sceneByIdOrName[nodes[n].id].push_back(n);
-            if (!nodes[n].name.empty() && nodes[n].name != nodes[n].id)
+            sceneByIdOrName[nodes[n].id].push_back(n);
+            if (nodes[n].name != nodes[n].id)
                 sceneByIdOrName[nodes[n].name].push_back(n);
+            if (nodes[n].name.empty() && nodes[n].parent == none && nodes[n].id != "Scene")
+                sceneByIdOrName["Scene"].push_back(n);
         }
     }
     struct Edge
@@ -989,9 +1014,13 @@ std::pair<int, std::string> plyDataProblem(std::string_view data)
         };
         // The line after the one ending at byte `end`.
         const auto nextLine = [&](std::size_t end) {
-            std::size_t start = end + 1;
+            std::size_t start = std::min(end + 1, data.size());
             if (start < data.size() && isLineEnd(start))
-                start = std::min(data.size(), data.find('\n', start) + 1);
+            {
+                // The next line starts after the following \n; with none, the data has ended.
+                const std::size_t newline = data.find('\n', start);
+                start = newline == std::string_view::npos ? data.size() : newline + 1;
+            }
             return start;
         };
         std::size_t start = nextLine(layout.headerEnd);
@@ -1241,6 +1270,10 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
                         const Assimp::Importer &importer)
 {
     const std::string kind = lowercase(format);
+    // Zip archives (.zae, .3mf, .pk3, ...): assimp unpacks them and reads what is inside, which none
+    // of the checks below would see (a .zae holding a COLLADA instance cycle overflowed the stack).
+    if (kind == "zae" || data.substr(0, 4) == std::string_view("PK\x03\x04", 4))
+        throw InputError(name, 0, "a zip archive (.zae and the like) is not read: unpack the mesh file it holds");
     if (kind == "obj" || !importer.IsExtensionSupported(kind.c_str()))
         if (const auto [line, problem] = objLineStatementProblem(data); !problem.empty())
             throw InputError(name, line, "malformed OBJ file: " + problem);

@@ -789,3 +789,34 @@ TEST(MeshLoader, RobotNearTheFloatRangeEndIsCentred)
         loadError("v inf 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", "obj").find("mesh has a non-finite vertex coordinate"),
         std::string::npos);
 }
+
+// Cases a review of the pre-checks found still crashing assimp or reading past its buffers, kept
+// in the fuzz corpus: each is refused with its reason, or (the PLY line ends) loads or is refused
+// without reading outside the data.
+TEST(MeshLoader, PreCheckGapsFoundInReviewAreClosed)
+{
+    const auto corpusFile = [](const std::string &file) {
+        std::ifstream in(test::sourcePath("tests/fuzz_corpus/mesh/" + file), std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    const std::pair<std::string, std::string> refused[] = {
+        // An <instance_node url="#"> finds any node without a name; a visual scene without a name
+        // is called "Scene": both cycles.
+        {"regression_collada_instance_of_empty_url.dae", "contains itself through <instance_node> references"},
+        {"regression_collada_instance_of_default_scene_name.dae", "contains itself through <instance_node>"},
+        // source="#" names an array without an id; positions read from an array of names.
+        {"regression_collada_accessor_of_array_without_id.dae", "past the array's count of 24"},
+        {"regression_collada_positions_from_name_array.dae", "reading numbers from an array of names"},
+        {"regression_ply_lines_end_in_returns_only.ply", "its data ends after 1 of its 3 vertex elements"},
+    };
+    for (const auto &[file, message] : refused)
+    {
+        const std::string format = file.substr(file.rfind('.') + 1);
+        const std::string error = loadError(corpusFile(file), format);
+        EXPECT_NE(error.find(message), std::string::npos) << file << ": " << error;
+    }
+    EXPECT_NE(loadError(corpusFile("regression_zae_holding_instance_cycle.zae"), "zae").find("a zip archive"),
+              std::string::npos);
+    EXPECT_EQ(loadError(corpusFile("regression_ply_last_line_ends_in_two_returns.ply"), "ply"), "");
+    EXPECT_EQ(loadError(corpusFile("regression_ply_trailing_zero_byte.ply"), "ply"), "");
+}
