@@ -2,24 +2,12 @@
 #include "hybridcd/broadphase/brute_force_broad_phase.h"
 
 #include <algorithm>
-#include <stdexcept>
-#include <string>
 
 namespace hcd
 {
-namespace
-{
-void requireValid(const BroadPhaseBox &box, const char *what)
-{
-    if (!box.valid())
-        throw std::invalid_argument(std::string(what) +
-                                    ": a broad-phase box needs lower <= upper on every axis and no NaN bound");
-}
-}  // namespace
-
 BodyHandle BruteForceBroadPhase::add(const BroadPhaseBox &box, std::uint32_t userData, BroadPhaseFilter filter)
 {
-    requireValid(box, "BruteForceBroadPhase::add");
+    box.requireValid("BruteForceBroadPhase::add");
     std::uint32_t index;
     if (!free_.empty())
     {
@@ -38,7 +26,7 @@ BodyHandle BruteForceBroadPhase::add(const BroadPhaseBox &box, std::uint32_t use
 
 void BruteForceBroadPhase::update(BodyHandle body, const BroadPhaseBox &box)
 {
-    requireValid(box, "BruteForceBroadPhase::update");
+    box.requireValid("BruteForceBroadPhase::update");
     bodies_[body.index].box = box;
 }
 

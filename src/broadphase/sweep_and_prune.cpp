@@ -104,13 +104,6 @@ void BodyPairSet::eraseSlot(std::size_t hole)
 
 namespace
 {
-void requireValid(const BroadPhaseBox &box, const char *what)
-{
-    if (!box.valid())
-        throw std::invalid_argument(std::string(what) +
-                                    ": a broad-phase box needs lower <= upper on every axis and no NaN bound");
-}
-
 // True when endpoint p sorts below q: by coordinate, and at the same coordinate a lower endpoint
 // (tag bit 0 clear) below an upper one: closed intervals.
 template <typename Endpoint>
@@ -199,7 +192,7 @@ void SweepAndPrune::sortUp(int axis, std::uint32_t at)
 
 BodyHandle SweepAndPrune::add(const BroadPhaseBox &box, std::uint32_t userData, BroadPhaseFilter filter)
 {
-    requireValid(box, "SweepAndPrune::add");
+    box.requireValid("SweepAndPrune::add");
     std::uint32_t index;
     if (!free_.empty())
     {
@@ -238,7 +231,7 @@ BodyHandle SweepAndPrune::add(const BroadPhaseBox &box, std::uint32_t userData, 
 
 void SweepAndPrune::update(BodyHandle handle, const BroadPhaseBox &box)
 {
-    requireValid(box, "SweepAndPrune::update");
+    box.requireValid("SweepAndPrune::update");
     Body &b = bodies_[handle.index];
     const Position &position = positions_[handle.index];
     const BroadPhaseBox old = b.box;
@@ -301,13 +294,13 @@ void SweepAndPrune::updateMany(const BodyHandle *handles, const BroadPhaseBox *b
     if (16 * count < live_)
     {
         for (std::size_t i = 0; i < count; ++i)
-            requireValid(boxes[i], "SweepAndPrune::updateMany");
+            boxes[i].requireValid("SweepAndPrune::updateMany");
         for (std::size_t i = 0; i < count; ++i)
             update(handles[i], boxes[i]);
         return;
     }
     for (std::size_t i = 0; i < count; ++i)
-        requireValid(boxes[i], "SweepAndPrune::updateMany");
+        boxes[i].requireValid("SweepAndPrune::updateMany");
     // Every new box first (events test the new boxes), then each list sorted whole.
     for (std::size_t i = 0; i < count; ++i)
     {

@@ -18,10 +18,6 @@ namespace
 // Bounds on the slack: above the largest inscribed radius (sqrt 3), below the smallest slack
 // anywhere in the box (-(sqrt 3 + 4 sqrt 3)), so neither is active at the optimum.
 constexpr double kSlackHigh = 4.0, kSlackLow = -16.0;
-// Violations below this fraction of the tolerance (1e-13 relative) are rounding: exactly touching
-// pieces land there, and are answered without the separating-axis search of the band above it.
-// A sharp vertex (angle above 2e-4 rad) within the band is within the tolerance of touching.
-constexpr double kRoundingFraction = 1e-4;
 
 // Writes rows[0..n) to `sorted` in increasing order of b (the slack at the origin with t = 0)
 // up to buckets: a stable counting sort into n equal buckets between the smallest and largest b.
@@ -114,6 +110,8 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
     {
         result.witness = frame.center + frame.scale * Vec3(lp.x[0], lp.x[1], lp.x[2]);
         result.depth = -std::max(a.maxViolation(result.witness), b.maxViolation(result.witness));
+        // Within rounding: answered without the separating-axis search of the band below. A sharp
+        // vertex (angle above 2e-4 rad) within the band is within the tolerance of touching.
         if (result.depth >= -kRoundingFraction * tolerance)
         {
             result.intersecting = true;

@@ -22,8 +22,6 @@ constexpr double kPriceTolerance = 1e-12;
 constexpr double kPivotTolerance = 1e-11;
 // Degenerate pivots in a row before Bland's rule takes over.
 constexpr int kDegenerateRun = 6;
-// As the slack LP: a witness violating by less than this fraction of the tolerance is rounding.
-constexpr double kRoundingFraction = 1e-4;
 
 // The simplex over the workspace's tableau. Columns: faces 0..m-1, surpluses m..m+2, artificials
 // m+3..m+5; each column holds its three constraint-row entries and its reduced cost.

@@ -9,7 +9,7 @@ namespace hcd
 {
 namespace
 {
-constexpr double kMarginRelative = 1e-12;
+constexpr double kGjkMarginRelative = 1e-12;
 constexpr int kMaxRestarts = 200;
 
 // The simplex: up to four points w = a - b of the Minkowski difference with their sources.
@@ -297,7 +297,7 @@ double GjkBody::scale() const
     return m;
 }
 
-double gjkMargin(const GjkBody &a, const GjkBody &b) { return kMarginRelative * (a.scale() + b.scale()); }
+double gjkMargin(const GjkBody &a, const GjkBody &b) { return kGjkMarginRelative * (a.scale() + b.scale()); }
 
 GjkResult gjkDistance(const GjkBody &a, const GjkBody &b, const GjkRequest &request, GjkWarmStart &warm)
 {

@@ -17,7 +17,7 @@ namespace hcd
 {
 namespace
 {
-constexpr double kMarginRelative = 1e-12;
+constexpr double kShapeMarginRelative = 1e-12;
 
 using PairFunction = ShapePairResult (*)(const Shape &, const RigidTransform &, const Shape &, const RigidTransform &,
                                          ShapePairQuery, ShapePairScratch &);
@@ -60,7 +60,8 @@ ShapePairResult inflated(const Vec3 &ca, double ra, const Vec3 &cb, double rb, d
 ShapePairResult sphereSphere(const Shape &a, const RigidTransform &wa, const Shape &b, const RigidTransform &wb,
                              ShapePairQuery, ShapePairScratch &)
 {
-    return inflated(wa.translation, a.radius(), wb.translation, b.radius(), kMarginRelative * pairScale(a, wa, b, wb));
+    return inflated(wa.translation, a.radius(), wb.translation, b.radius(),
+                    kShapeMarginRelative * pairScale(a, wa, b, wb));
 }
 
 ShapePairResult sphereCapsule(const Shape &a, const RigidTransform &wa, const Shape &b, const RigidTransform &wb,
@@ -69,7 +70,7 @@ ShapePairResult sphereCapsule(const Shape &a, const RigidTransform &wa, const Sh
     const auto axis = capsuleAxis(b, wb);
     Vec3 onSphere, onAxis;
     closestPointsOfSegments(wa.translation, wa.translation, axis[0], axis[1], onSphere, onAxis);
-    return inflated(wa.translation, a.radius(), onAxis, b.radius(), kMarginRelative * pairScale(a, wa, b, wb));
+    return inflated(wa.translation, a.radius(), onAxis, b.radius(), kShapeMarginRelative * pairScale(a, wa, b, wb));
 }
 
 ShapePairResult capsuleCapsule(const Shape &a, const RigidTransform &wa, const Shape &b, const RigidTransform &wb,
@@ -78,7 +79,7 @@ ShapePairResult capsuleCapsule(const Shape &a, const RigidTransform &wa, const S
     const auto axisA = capsuleAxis(a, wa), axisB = capsuleAxis(b, wb);
     Vec3 onA, onB;
     closestPointsOfSegments(axisA[0], axisA[1], axisB[0], axisB[1], onA, onB);
-    return inflated(onA, a.radius(), onB, b.radius(), kMarginRelative * pairScale(a, wa, b, wb));
+    return inflated(onA, a.radius(), onB, b.radius(), kShapeMarginRelative * pairScale(a, wa, b, wb));
 }
 
 ShapePairResult sphereBox(const Shape &a, const RigidTransform &wa, const Shape &b, const RigidTransform &wb,
@@ -87,7 +88,7 @@ ShapePairResult sphereBox(const Shape &a, const RigidTransform &wa, const Shape 
     // The sphere's centre in the box frame, clamped to the box: the box's closest point.
     const Vec3 local = wb.rotation.transpose() * (wa.translation - wb.translation);
     const Vec3 clamped = local.cwiseMax(-b.extents()).cwiseMin(b.extents());
-    const double margin = kMarginRelative * pairScale(a, wa, b, wb);
+    const double margin = kShapeMarginRelative * pairScale(a, wa, b, wb);
     if (clamped == local)
         return fromGap(-1.0, margin, wa.translation, wa.translation);
     return inflated(wa.translation, a.radius(), wb.apply(clamped), 0.0, margin);
@@ -104,7 +105,7 @@ ShapePairResult boxBox(const Shape &a, const RigidTransform &wa, const Shape &b,
 {
     if (query != ShapePairQuery::Intersection)
         return byGjk(a, wa, b, wb, query, scratch);
-    const double margin = kMarginRelative * pairScale(a, wa, b, wb);
+    const double margin = kShapeMarginRelative * pairScale(a, wa, b, wb);
     const Vec3 t = wb.translation - wa.translation;
     const Mat3 &ra = wa.rotation, &rb = wb.rotation;
     auto gapAlong = [&](const Vec3 &axis) {
@@ -144,8 +145,8 @@ ShapePairResult supportHalfspace(const Shape &a, const RigidTransform &wa, const
     const double offset = b.offset() + n.dot(wb.translation);
     const Vec3 deepest = wa.apply(supportPoint(a, wa.rotation.transpose() * -n));
     const double gap = n.dot(deepest) - offset;
-    const double margin =
-        kMarginRelative * (wa.translation.norm() + boundingRadius(a) + wb.translation.norm() + std::abs(b.offset()));
+    const double margin = kShapeMarginRelative *
+                          (wa.translation.norm() + boundingRadius(a) + wb.translation.norm() + std::abs(b.offset()));
     return fromGap(gap, margin, deepest, deepest - gap * n);
 }
 
@@ -162,7 +163,7 @@ ShapePairResult halfspaceHalfspace(const Shape &a, const RigidTransform &wa, con
         // {na.x <= oa} and {na.x >= -ob}: a gap of -ob - oa between the planes when positive.
         const double gap = -ob - oa;
         const double margin =
-            kMarginRelative * (wa.translation.norm() + wb.translation.norm() + std::abs(oa) + std::abs(ob));
+            kShapeMarginRelative * (wa.translation.norm() + wb.translation.norm() + std::abs(oa) + std::abs(ob));
         const Vec3 onA = na * oa;
         return fromGap(gap, margin, onA, onA + gap * na);
     }
@@ -283,7 +284,7 @@ ShapePairResult shapeTriangle(const Shape &a, const RigidTransform &worldFromA, 
 {
     const double scale =
         worldFromA.translation.norm() + boundingRadius(a) + std::max({t0.norm(), t1.norm(), t2.norm()});
-    const double margin = kMarginRelative * scale;
+    const double margin = kShapeMarginRelative * scale;
     switch (a.kind())
     {
     case ShapeKind::Sphere:
@@ -330,7 +331,7 @@ ShapePairResult shapeTriangle(const Shape &a, const RigidTransform &worldFromA, 
             if (n.dot(corners[k]) < n.dot(corners[lowest]))
                 lowest = k;
         const double gap = n.dot(corners[lowest]) - offset;
-        return fromGap(gap, kMarginRelative * (scale + std::abs(a.offset())), corners[lowest] - gap * n,
+        return fromGap(gap, kShapeMarginRelative * (scale + std::abs(a.offset())), corners[lowest] - gap * n,
                        corners[lowest]);
     }
     case ShapeKind::Mesh:

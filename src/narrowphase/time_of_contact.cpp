@@ -3,6 +3,8 @@
 
 #include "hybridcd/narrowphase/linear_program.h"
 
+#include "working_frame.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -10,16 +12,6 @@
 
 namespace hcd
 {
-namespace
-{
-// Seidel's tolerance in the unit working frame, as in `intersectConvexPieces`: far above
-// rounding, far below the narrow phase's 1e-9.
-constexpr double kLpTolerance = 1e-12;
-// Box on the working coordinates: four times the data's extent, never active at the optimum
-// (the witness lies in the fixed piece, inside the unit cube).
-constexpr double kBox = 4.0;
-}  // namespace
-
 TimeOfContact translationalTimeOfContact(const ConvexPiece &moving, const Vec3 &displacement, const ConvexPiece &fixed)
 {
     if (!displacement.allFinite())

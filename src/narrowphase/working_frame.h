@@ -76,4 +76,7 @@ constexpr double kBox = 4.0;
 // Seidel's tolerance in the working frame (unit size): far above rounding, far below the
 // narrow phase's 1e-9.
 constexpr double kLpTolerance = 1e-12;
+// A witness violating a constraint by less than this fraction of the tolerance (1e-13 relative)
+// is rounding: exactly touching pieces land there.
+constexpr double kRoundingFraction = 1e-4;
 }  // namespace hcd

@@ -16,6 +16,8 @@
 
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace hcd
@@ -35,6 +37,14 @@ struct BroadPhaseBox
 
     /// True when no bound is NaN and lower <= upper on every axis.
     bool valid() const { return (lower.array() <= upper.array()).all(); }
+
+    /// Throws std::invalid_argument naming `what` (the calling function) unless `valid()`.
+    void requireValid(const char *what) const
+    {
+        if (!valid())
+            throw std::invalid_argument(std::string(what) +
+                                        ": a broad-phase box needs lower <= upper on every axis and no NaN bound");
+    }
 };
 
 /// The overlap rule of every broad phase (closed boxes, exact comparisons; see the file comment).
