@@ -44,6 +44,10 @@ struct RobotSweep
     bool rotates = false;
 };
 
+// Upper bound on |x| over the body's points x in its robot's frame (world units): how far a turn
+// of the robot moves them, per radian.
+double bodyReach(const SceneBody &b) { return b.ownerFromBody.translation.norm() + b.geometry->boundingRadius(); }
+
 // How far OMPL's placement of the pair's bodies may lie from this file's at any t (world units).
 double pairOffset(const Scene &scene, const ScenePair &pair, const std::vector<RobotSweep> &sweeps)
 {
@@ -52,8 +56,7 @@ double pairOffset(const Scene &scene, const ScenePair &pair, const std::vector<R
     {
         const SceneBody &b = scene.bodies()[body];
         if (b.robot >= 0)
-            offset += sweeps[std::size_t(b.robot)].offsetAngle *
-                      (b.ownerFromBody.translation.norm() + b.geometry->boundingRadius()) * (1.0 + 1e-12);
+            offset += sweeps[std::size_t(b.robot)].offsetAngle * bodyReach(b) * (1.0 + 1e-12);
     }
     return offset;
 }
@@ -65,7 +68,7 @@ double bodySpeed(const Scene &scene, std::size_t body, const std::vector<RobotSw
     if (b.robot < 0)
         return 0.0;
     const RobotSweep &sweep = sweeps[std::size_t(b.robot)];
-    const double reach = b.ownerFromBody.translation.norm() + b.geometry->boundingRadius();
+    const double reach = bodyReach(b);
     // A relative 1e-12 for the rounding of the interpolated poses themselves.
     return (sweep.translation + sweep.angle * reach) * (1.0 + 1e-12) + 1e-15 * scene.scale();
 }
@@ -77,7 +80,7 @@ double supportRate(const Scene &scene, std::size_t body, const Vec3 &direction, 
     if (b.robot < 0)
         return 0.0;
     const RobotSweep &sweep = sweeps[std::size_t(b.robot)];
-    const double reach = b.ownerFromBody.translation.norm() + b.geometry->boundingRadius();
+    const double reach = bodyReach(b);
     const double rate = direction.dot(sweep.displacement) + sweep.angle * reach;
     return rate + 1e-12 * (sweep.translation + sweep.angle * reach) + 1e-15 * scene.scale();
 }
