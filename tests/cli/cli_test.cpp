@@ -175,10 +175,7 @@ TEST(Cli, BadInputGivesClearErrorsAndNonZeroExit)
 TEST(Cli, CollidingGoalIsRejectedBeforePlanning)
 {
     // The goal lies inside the dividing wall: solve says so at once instead of spending --time.
-    std::ifstream in(problem3d());
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string cfg = text.str();
+    std::string cfg = test::fileText(problem3d());
     const auto replace = [&](const std::string &key, const std::string &value) {
         const auto at = cfg.find(key);
         const auto end = cfg.find('\n', at);
@@ -210,18 +207,10 @@ TEST(Cli, NoPathInTimeExitsTwo)
 
 namespace
 {
-std::string fileText(const std::string &path)
-{
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 // window_3d with its window closed by one more box: start and goal lie in two sealed rooms.
 std::string sealedWindowProblem()
 {
-    std::string env = fileText(test::sourcePath("problems/window_3d_env.obj"));
+    std::string env = test::fileText(test::sourcePath("problems/window_3d_env.obj"));
     int vertices = 0;
     std::istringstream lines(env);
     for (std::string line; std::getline(lines, line);)
@@ -236,8 +225,8 @@ std::string sealedWindowProblem()
     for (const auto &f : faces)
         box << "f " << vertices + f[0] + 1 << ' ' << vertices + f[1] + 1 << ' ' << vertices + f[2] + 1 << '\n';
     test::writeTempFile("sealed_env.obj", env + "\n" + box.str());
-    test::writeTempFile("sealed_robot.obj", fileText(test::sourcePath("problems/window_3d_robot.obj")));
-    std::string cfg = fileText(problem3d());
+    test::writeTempFile("sealed_robot.obj", test::fileText(test::sourcePath("problems/window_3d_robot.obj")));
+    std::string cfg = test::fileText(problem3d());
     cfg.replace(cfg.find("window_3d_robot.obj"), 19, "sealed_robot.obj");
     cfg.replace(cfg.find("window_3d_env.obj"), 17, "sealed_env.obj");
     return test::writeTempFile("sealed.cfg", cfg);
@@ -265,7 +254,7 @@ TEST(Cli, SolveReportsProgressAndLabelsAnApproximatePath)
         return test::runShell("{ " + std::string(HYBRIDCD_CLI) + " solve " + cfg + " " + args + " 2>" + err + "; }");
     };
     const CliRun r = solveTo("--planner rrt --seed 1 --time 2.5 --out " + out);
-    const std::string progress = fileText(err);
+    const std::string progress = test::fileText(err);
     EXPECT_EQ(r.status, 2) << r.output << progress;
 
     // A line a second with the elapsed time, the iterations and the collision checks, then a summary.
@@ -307,7 +296,7 @@ TEST(Cli, SolveReportsProgressAndLabelsAnApproximatePath)
     // --quiet: no progress at all; a terminal gets one bar redrawn in place.
     const CliRun quiet = solveTo("--planner rrt --seed 1 --time 1.2 --quiet --out " + out);
     EXPECT_EQ(quiet.status, 2) << quiet.output;
-    EXPECT_EQ(fileText(err).find("solve: "), std::string::npos) << fileText(err);
+    EXPECT_EQ(test::fileText(err).find("solve: "), std::string::npos) << test::fileText(err);
     const test::ShellResult bar = test::runShell("script -qec '" + std::string(HYBRIDCD_CLI) + " solve " + cfg +
                                                  " --planner rrt --seed 1 --time 1.2 --out " + out + "' /dev/null");
     EXPECT_EQ(bar.status, 2) << bar.output;
@@ -654,8 +643,7 @@ TEST(Cli, BenchRunsASceneProblemPerConfiguration)
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("3 robots; configurations: auto+continuous,auto+discrete(0.01)"), std::string::npos)
         << r.output;
-    std::ifstream in(log);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string text = test::fileText(log);
     EXPECT_NE(text.find("RRTConnect[auto+continuous]"), std::string::npos);
     EXPECT_NE(text.find("RRTConnect[auto+discrete(0.01)]"), std::string::npos);
     // OMPL.app has no set-up for several robots to compare with.

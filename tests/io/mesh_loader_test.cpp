@@ -390,8 +390,7 @@ TEST(MeshLoader, MatchesOmplAppGeometryOnCubicles)
 // counts above what the data can hold, before import.
 TEST(MeshLoader, ColladaArraysNeedACountTheDataCanHold)
 {
-    std::ifstream in(test::sourcePath("tests/fuzz_corpus/mesh/tet.dae"));
-    const std::string tet((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string tet = test::fileText(test::sourcePath("tests/fuzz_corpus/mesh/tet.dae"));
     const std::string::size_type at = tet.find("count=\"12\"");
     ASSERT_NE(at, std::string::npos);
     EXPECT_EQ(loadMeshFromMemory(tet, "dae", MeshRole::Environment, "tet.dae").mesh->triangleCount(), 4u);
@@ -420,8 +419,7 @@ TEST(MeshLoader, ColladaArraysNeedACountTheDataCanHold)
 // data's size can hold.
 TEST(MeshLoader, ColladaIndexListsHoldWholeNumbers)
 {
-    std::ifstream in(test::sourcePath("tests/fuzz_corpus/mesh/tet.dae"));
-    const std::string tet((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string tet = test::fileText(test::sourcePath("tests/fuzz_corpus/mesh/tet.dae"));
     const std::string::size_type at = tet.find("<p>0 2 1");
     ASSERT_NE(at, std::string::npos);
     for (const std::string &replacement : {"<p>$ 2 1", "<p>0 -2 1", "<p>0 2.5 1", "<p>0 99999999999999 1"})
@@ -796,8 +794,7 @@ TEST(MeshLoader, RobotNearTheFloatRangeEndIsCentred)
 TEST(MeshLoader, PreCheckGapsFoundInReviewAreClosed)
 {
     const auto corpusFile = [](const std::string &file) {
-        std::ifstream in(test::sourcePath("tests/fuzz_corpus/mesh/" + file), std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        return test::fileText(test::sourcePath("tests/fuzz_corpus/mesh/" + file));
     };
     const std::pair<std::string, std::string> refused[] = {
         // An <instance_node url="#"> finds any node without a name; a visual scene without a name

@@ -136,4 +136,10 @@ std::string writeTempFile(const std::string &name, const std::string &text)
     std::ofstream(path) << text;
     return path.string();
 }
+
+std::string fileText(const std::string &path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 }  // namespace hcd::test

@@ -73,6 +73,9 @@ ShellResult runShell(const std::string &command);
 /// Writes `text` to a fresh file in the test's temporary folder and returns its path.
 std::string writeTempFile(const std::string &name, const std::string &text);
 
+/// The bytes of the file at `path`, read as they are (empty when it cannot be opened).
+std::string fileText(const std::string &path);
+
 /// Skips the test with `message`, or fails it in CI where nothing may be skipped silently.
 #define HYBRIDCD_SKIP_OR_FAIL_IN_CI(message)                                                                           \
     do                                                                                                                 \
