@@ -158,8 +158,7 @@ double CommandLine::timeLimit(const std::string &key, double fallback) const
 {
     const double v = positiveNumber(key, fallback);
     if (v > kMaxTimeLimitSeconds)
-        throw UsageError("option --" + key + " needs at most 1e9 seconds (about 31 years), got '" + text(key, "") +
-                         "'");
+        throw UsageError("option --" + key + " needs at most " + kMaxTimeLimitText + ", got '" + text(key, "") + "'");
     return v;
 }
 

@@ -543,7 +543,8 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
                 throw InputError(path, e.line, key + " needs a positive number, got '" + e.value + "'");
             if (key == "time_limit" && limit > kMaxTimeLimitSeconds)
                 throw InputError(path, e.line,
-                                 "time_limit needs at most 1e9 seconds (about 31 years), got '" + e.value + "'");
+                                 std::string("time_limit needs at most ") + kMaxTimeLimitText + ", got '" + e.value +
+                                     "'");
             (key == "time_limit" ? cfg.benchmark.timeLimit : cfg.benchmark.memoryLimit) = limit;
         }
         else if (key == "run_count")

@@ -48,19 +48,6 @@ void orderBySlack(const small_lp::Row<4> *rows, int n, small_lp::Row<4> *sorted,
     for (int i = 0; i < n; ++i)
         sorted[count[bucketOf[i]]++] = rows[i];
 }
-
-// Sets the plane normal to `direction` halfway between the pieces when the gap between their
-// vertex projections exceeds `minimumGap`.
-bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap,
-                   IntersectionResult &result)
-{
-    const VertexGap along = vertexGapAlong(direction, a, b);
-    if (!(along.gap > minimumGap))
-        return false;
-    result.separatingNormal = along.normal;
-    result.separatingOffset = along.offset;
-    return true;
-}
 }  // namespace
 
 IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &workspace)

@@ -129,20 +129,6 @@ struct DualSimplex
     }
 };
 
-// The plane with normal along `direction` halfway between the vertex projections, when they are
-// more than `minimumGap` apart.
-bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap,
-                   DualLpResult &result, double *gap)
-{
-    const VertexGap along = vertexGapAlong(direction, a, b);
-    *gap = along.gap;
-    if (!(along.gap > minimumGap))
-        return false;
-    result.separatingNormal = along.normal;
-    result.separatingOffset = along.offset;
-    return true;
-}
-
 DualLpResult fallBack(const ConvexPiece &a, const ConvexPiece &b, LpWorkspace &slack, int pivots)
 {
     const IntersectionResult r = intersectConvexPieces(a, b, slack);

@@ -26,11 +26,12 @@ struct MotionRates
     bool bounded = false;      ///< false: non-finite states or quaternions off unit length
 };
 
+// p1 and p2 are the poses of s1 and s2.
 MotionRates motionRates(const ompl::base::StateSpacePtr &space, const ompl::base::State *s1,
-                        const ompl::base::State *s2, bool planar, ompl::base::State *scratch)
+                        const ompl::base::State *s2, const RigidTransform &p1, const RigidTransform &p2, bool planar,
+                        ompl::base::State *scratch)
 {
     MotionRates rates;
-    const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
     const double turn = interpolationTurn(s1, s2, planar);
     if (!p1.isFinite() || !p2.isFinite() || !std::isfinite(turn))
         return rates;
@@ -336,11 +337,12 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
         report.blockedAt = at;
         return report;
     };
-    if (validity_->poseCollides(poseOfState(s1, planar), *context))
+    const RigidTransform p1 = poseOfState(s1, planar);
+    if (validity_->poseCollides(p1, *context))
         return contact(0.0, 0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
-    const MotionRates rates = motionRates(space, s1, s2, planar, state);
+    const MotionRates rates = motionRates(space, s1, s2, p1, poseOfState(s2, planar), planar, state);
     if (!rates.bounded)
         return report;  // refused, no contact
 
@@ -484,7 +486,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         return contact(0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
-    const MotionRates rates = motionRates(space, s1, s2, planar, state);
+    const RigidTransform p2 = poseOfState(s2, planar);
+    const MotionRates rates = motionRates(space, s1, s2, p1, p2, planar, state);
     if (!rates.bounded)
         return report;  // refused, no contact
 
@@ -498,7 +501,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         ++bits;
     const std::uint64_t m = std::uint64_t(1) << bits;
     // s2 itself, which OMPL's state at tau = 1 differs from by rates.endTurn.
-    if (validity_->poseCollides(poseOfState(s2, planar), *context))
+    if (validity_->poseCollides(p2, *context))
         return contact(1.0);
     for (std::uint64_t i = 1; i < m; ++i)
     {

@@ -66,6 +66,8 @@ constexpr std::uintmax_t kMaxProblemFileBytes = std::uintmax_t(16) << 20;
 /// of the system clock, and a limit near 1e10 s overflows them into an immediate timeout. Applies
 /// to [benchmark] time_limit and to the command line's --time.
 constexpr double kMaxTimeLimitSeconds = 1e9;
+/// kMaxTimeLimitSeconds as error messages give it.
+inline constexpr char kMaxTimeLimitText[] = "1e9 seconds (about 31 years)";
 
 struct BenchmarkSettings
 {
