@@ -238,6 +238,10 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
                 for (std::size_t i = runs.first[r]; i < runs.end[r]; ++i)
                     cellBytes_[i] = std::uint8_t(128 + unitsAt(i));
         }
+        insideMask_.assign((cellCount + 63) / 64, 0);
+        for (std::size_t i = 0; i < cellCount; ++i)
+            if (cellBytes_[i] >= 128)
+                insideMask_[i / 64] |= std::uint64_t(1) << (i % 64);
     }
     hasMarkers_ = !markers.empty() && !planar;
 

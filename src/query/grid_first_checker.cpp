@@ -284,12 +284,9 @@ bool GridFirstChecker::collidingByGrid(const RigidTransform &worldFromRobot) con
         return false;
     // Rounding in a mapped point, against how far beyond a free cell its side is known.
     const double rounding = 1e-15 * 8.0 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_ + 1.0);
-    const auto certainlyInside = [rounding](const ClearanceGrid &grid, const ClearanceSample &s) {
-        return s.inside && (rounding < 0.5 * grid.certainMargin() || s.clearance > rounding);
-    };
     if (environmentHasSolids_)
         for (const CoverSphere &s : cover_)
-            if (s.firstChild < 0 && certainlyInside(grid_, grid_.at(worldFromRobot.apply(s.probe))))
+            if (s.firstChild < 0 && grid_.certainlyInside(worldFromRobot.apply(s.probe), rounding))
                 return true;
     if (!robotGrid_.empty())
     {
@@ -305,7 +302,7 @@ bool GridFirstChecker::collidingByGrid(const RigidTransform &worldFromRobot) con
                 continue;
             const Vec3 onSurface = closestPointOnTriangle(centre, env.corner(std::size_t(t), 0),
                                                           env.corner(std::size_t(t), 1), env.corner(std::size_t(t), 2));
-            if (certainlyInside(robotGrid_, robotGrid_.at(robotFromWorld.apply(onSurface))))
+            if (robotGrid_.certainlyInside(robotFromWorld.apply(onSurface), rounding))
                 return true;
         }
     }

@@ -90,6 +90,18 @@ void expectClearsAgreesWithAt(const ClearanceGrid &grid, const Vec3 &p, const Cl
         }
 }
 
+// certainlyInside(), read from a bit per cell, is at()'s inside with its clearance above the
+// rounding unless the rounding is below half the certain margin.
+void expectCertainlyInsideAgreesWithAt(const ClearanceGrid &grid, const Vec3 &p, const ClearanceSample &s, double scale)
+{
+    for (const double rounding : {0.0, 0.25 * grid.certainMargin(), grid.certainMargin(), 0.5 * s.clearance,
+                                  s.clearance, 2.0 * s.clearance + 1e-3 * scale})
+    {
+        const bool byAt = s.inside && (rounding < 0.5 * grid.certainMargin() || s.clearance > rounding);
+        ASSERT_EQ(grid.certainlyInside(p, rounding), byAt) << "point " << p.transpose() << " rounding " << rounding;
+    }
+}
+
 struct Verdicts
 {
     int freeProved = 0, collidingProved = 0, witnessProved = 0, free = 0, colliding = 0;
@@ -217,6 +229,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
             ASSERT_EQ(few.inside, s.inside);
             ASSERT_EQ(few.outside, s.outside);
             expectClearsAgreesWithAt(grid, p, s, scale);
+            expectCertainlyInsideAgreesWithAt(grid, p, s, scale);
             ASSERT_FALSE(s.inside && s.outside);
             if (s.inside)
                 ASSERT_TRUE(solids.insideAnySolid(p));
