@@ -2,6 +2,7 @@
 #include "hybridcd/planners/planner_catalogue.h"
 
 #include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
 
 #include <gtest/gtest.h>
 
@@ -37,6 +38,27 @@ TEST(PlannerCatalogue, EveryNamedPlannerConstructs)
         const auto planner = makePlanner({n, "", {}}, si);
         ASSERT_TRUE(planner) << n;
     }
+}
+
+TEST(PlannerCatalogue, BitStarKeepsOnlyThreadSafeProgress)
+{
+    // OMPL's Benchmark reads progress properties from a second thread while the planner runs; BIT*'s
+    // graph and sample counts are not safe to read then (bench runs died at random). The cost and
+    // the counters stay, for anytime summaries.
+    const auto si = se3();
+    for (const char *name : {"bitstar", "abitstar"})
+    {
+        const auto planner = makePlanner({name, "", {}}, si);
+        const auto &progress = planner->getPlannerProgressProperties();
+        for (const char *unsafe : kThreadUnsafeBitStarProgress)
+            EXPECT_EQ(progress.count(unsafe), 0u) << name << ": " << unsafe;
+        EXPECT_EQ(progress.count("best cost DOUBLE"), 1u) << name;
+        EXPECT_EQ(progress.count("state collision checks INTEGER"), 1u) << name;
+    }
+    // The names are OMPL's: the unwrapped planner has them.
+    const ompl::geometric::BITstar plain(si);
+    for (const char *unsafe : kThreadUnsafeBitStarProgress)
+        EXPECT_EQ(plain.getPlannerProgressProperties().count(unsafe), 1u) << unsafe;
 }
 
 TEST(PlannerCatalogue, AppliesNamesAndParameters)

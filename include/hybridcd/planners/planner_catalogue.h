@@ -22,6 +22,12 @@ std::vector<std::string> plannerNames();
 /// value.
 ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si);
 
+/// The progress properties of OMPL 1.5's BIT* and ABIT* that read the planner's graph while it
+/// changes it (OMPL issue 779). makePlanner leaves them out: OMPL's Benchmark reads progress from a
+/// second thread, and runs died at random on them.
+inline constexpr const char *kThreadUnsafeBitStarProgress[] = {"current free states INTEGER",
+                                                               "current graph vertices INTEGER"};
+
 /// Lowercase names of the control planners (for kinodynamic problems): est, kpiece, pdst, rrt, sst.
 std::vector<std::string> controlPlannerNames();
 
