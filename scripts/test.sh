@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Installs, builds (with tests) and runs the whole suite with CTest:
 #   1. Release build, the whole suite;
-#   2. AddressSanitizer + UndefinedBehaviorSanitizer build, the suite but for twelve agreement tests at
-#      the largest scale (below);
+#   2. AddressSanitizer + UndefinedBehaviorSanitizer build, the suite but for its twelve heaviest
+#      tests (below);
 #   3. ThreadSanitizer build, the concurrency tests (8 threads on every checker and every query).
 #   4. the layering of the includes, the layout of the sources (.clang-format), the README's copies
 #      of the library and Python examples, and hybridcd as a consumer sees it: installed into a
@@ -32,11 +32,11 @@ if [ "${HYBRIDCD_SANITIZERS:-1}" != 0 ]; then
   # Sanitizer builds keep assertions and use -O1: compile time matters more than speed here.
   sanitizer_flags=(-DCMAKE_BUILD_TYPE=Sanitize "-DCMAKE_CXX_FLAGS_SANITIZE=-O1 -g1" -DHYBRIDCD_BUILD_BENCH=OFF)
 
-  # The sanitizer run leaves to the Release run the twelve agreement tests at the largest scale
-  # (each 30-120 s under AddressSanitizer, a third of the run): they repeat the code paths of the
-  # smaller cases beside them (VolumeAgreement on seven other problems, CheckerAgreement on four,
-  # the other MedialSpheres, BruteForce, Solve, Bench, TriangleIntersection and ConvexDecomposition
-  # tests) on more triangles or more runs.
+  # The sanitizer run leaves to the Release run its twelve heaviest tests (each 30-120 s under
+  # AddressSanitizer, a third of the run): they repeat the code paths of the smaller cases beside
+  # them (VolumeAgreement on seven other problems, CheckerAgreement on four, the other
+  # MedialSpheres, BruteForce, Solve, Bench, TriangleIntersection and ConvexDecomposition tests) on
+  # more triangles or more runs.
   release_only="VolumeAgreement\.(Apartment|Alpha15|Bugtrap|OrganicBone3d|OrganicBones2d)$"
   release_only+="|CheckerAgreement\.Alpha15$|MedialSpheres\.ApproximateModeErrsOnlyTowardCollisionWithinTolerance$"
   release_only+="|Solve\.OrganicProblems$|BruteForce\.SweepMatchesAllPairsOnSnappedSoups$"

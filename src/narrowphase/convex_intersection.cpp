@@ -121,7 +121,8 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
             Vec3 direction = Vec3::Zero();
             for (int j = 0; j < 4; ++j)
                 direction += (lp.basis[j] < rowsOfA ? 1.0 : -1.0) * lambda[j] * columns.col(j).head<3>();
-            if (lambda.allFinite() && separateAlong(direction, a, b, clearlyApart ? 0.0 : tolerance, result))
+            if (lambda.allFinite() && separateAlong(direction, a, b, clearlyApart ? 0.0 : tolerance,
+                                                    result.separatingNormal, result.separatingOffset))
             {
                 result.certificate = IntersectionResult::Certificate::LpDual;
                 return result;
@@ -134,7 +135,8 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
             // pieces count as touching only if no axis separates them by more than the tolerance
             // either (the reference test's criterion). Rare, so the axis search's cost is too.
             Vec3 axis;
-            if (AxisSearch(a, b, tolerance).run(&axis) > tolerance && separateAlong(axis, a, b, tolerance, result))
+            if (AxisSearch(a, b, tolerance).run(&axis) > tolerance &&
+                separateAlong(axis, a, b, tolerance, result.separatingNormal, result.separatingOffset))
             {
                 result.certificate = IntersectionResult::Certificate::AxisSearch;
                 return result;
@@ -145,7 +147,8 @@ IntersectionResult intersectConvexPieces(const ConvexPiece &a, const ConvexPiece
         }
     }
     Vec3 axis;
-    if (separatingAxisGap(a, b, &axis) > 0.0 && separateAlong(axis, a, b, 0.0, result))
+    if (separatingAxisGap(a, b, &axis) > 0.0 &&
+        separateAlong(axis, a, b, 0.0, result.separatingNormal, result.separatingOffset))
     {
         result.certificate = IntersectionResult::Certificate::AxisSearch;
         return result;

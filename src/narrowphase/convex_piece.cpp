@@ -352,4 +352,17 @@ VertexGap vertexGapAlong(const Vec3 &direction, const ConvexPiece &a, const Conv
     result.offset = 0.5 * (maxA + minB);  // lies in [maxA, minB] in floating point too
     return result;
 }
+
+bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap, Vec3 &normal,
+                   double &offset, double *gap)
+{
+    const VertexGap along = vertexGapAlong(direction, a, b);
+    if (gap)
+        *gap = along.gap;
+    if (!(along.gap > minimumGap))
+        return false;
+    normal = along.normal;
+    offset = along.offset;
+    return true;
+}
 }  // namespace hcd

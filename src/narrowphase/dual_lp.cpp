@@ -231,7 +231,7 @@ std::optional<DualLpResult> solveAndCheck(const ConvexPiece &a, const ConvexPiec
             if (simplex.basis[j] < m)
                 addFace(simplex.basis[j], -simplex.at(j, enter));
         double gap;
-        if (separateAlong(w, a, b, tolerance, result, &gap))
+        if (separateAlong(w, a, b, tolerance, result.separatingNormal, result.separatingOffset, &gap))
         {
             result.intersecting = false;
             result.certificate = DualLpResult::Certificate::FarkasPlane;

@@ -26,7 +26,7 @@ struct MotionRates
     bool bounded = false;      ///< false: non-finite states or quaternions off unit length
 };
 
-// p1 and p2 are the poses of s1 and s2.
+// p1 and p2 are the poses of s1 and s2 (the callers have them already).
 MotionRates motionRates(const ompl::base::StateSpacePtr &space, const ompl::base::State *s1,
                         const ompl::base::State *s2, const RigidTransform &p1, const RigidTransform &p2, bool planar,
                         ompl::base::State *scratch)
@@ -342,7 +342,8 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
         return contact(0.0, 0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
-    const MotionRates rates = motionRates(space, s1, s2, p1, poseOfState(s2, planar), planar, state);
+    const RigidTransform p2 = poseOfState(s2, planar);
+    const MotionRates rates = motionRates(space, s1, s2, p1, p2, planar, state);
     if (!rates.bounded)
         return report;  // refused, no contact
 

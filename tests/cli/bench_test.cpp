@@ -73,6 +73,54 @@ TEST(Bench, LogIsReadByOmplBenchmarkStatistics)
               "geometric_RRTConnect[auto+continuous]|0|1;geometric_RRTConnect[fcl+discrete(0.01)]|1|1\n");
 }
 
+TEST(Bench, AnytimeSummaryTakesTheFirstPathAndTheFinalCost)
+{
+    // A database in ompl_benchmark_statistics' layout, with answers worked out by hand: BIT* under
+    // OMPL.app's set-up finds paths at 0.4 and 0.2 s (costs 10 and 12) and none in a third run (the
+    // time limit, 5 s, counts; cost infinite); under hybridcd's, at 0.1 and 0.3 s (costs 9 and 11).
+    const std::string dir = tempDir() + "/anytime";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string py =
+        "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); "
+        "c.execute('create table experiments (id integer primary key, name varchar(512), timelimit real)'); "
+        "c.execute('create table plannerConfigs (id integer primary key, name varchar(512), settings text)'); "
+        "c.execute('create table runs (id integer primary key, experimentid integer, plannerid integer, best_cost "
+        "double)'); "
+        "c.execute('create table progress (runid integer, time real, best_cost double)'); "
+        "c.execute('insert into experiments values (1, \\'window\\', 5.0)'); "
+        "c.executemany('insert into plannerConfigs values (?, ?, \\'\\')', [(1, "
+        "'geometric_BITstar[fcl+discrete(0.01)]'), (2, 'geometric_BITstar[auto+continuous]')]); "
+        "c.executemany('insert into runs values (?, 1, ?, ?)', [(1, 1, 10.0), (2, 1, 12.0), (3, 1, None), (4, 2, "
+        "9.0), (5, 2, 11.0)]); "
+        "inf = float('inf'); "
+        "c.executemany('insert into progress values (?, ?, ?)', [(1, 0.2, inf), (1, 0.4, 10.5), (1, 0.6, 10.0), (2, "
+        "0.2, 12.0), (3, 0.2, inf), (3, 0.4, inf), (4, 0.05, inf), (4, 0.1, 9.5), (5, 0.3, 11.0)]); "
+        "c.commit()";
+    ASSERT_EQ(shell("python3 -c \"" + py + "\" " + dir + "/a.db").status, 0);
+    const Output summary =
+        shell("python3 " + hcd::test::sourcePath("bench/summarize_anytime.py") + " " + dir + "/a.db");
+    ASSERT_EQ(summary.status, 0) << summary.output;
+    // Medians: OMPL.app's first paths 0.2, 0.4, 5 -> 0.4 s, costs 10, 12, inf -> 12; hybridcd's
+    // 0.1, 0.3 -> 0.2 s, costs 9, 11 -> 10.
+    EXPECT_NE(summary.output.find("| window | BITstar[fcl+discrete(0.01)] | 3 | 2 | 0.40 | 1.00 | 12 | 1.00 |"),
+              std::string::npos)
+        << summary.output;
+    EXPECT_NE(summary.output.find("| window | BITstar[auto+continuous] | 2 | 2 | 0.20 | 0.50 | 10 | 0.83 |"),
+              std::string::npos)
+        << summary.output;
+    // A database without progress samples (a log of planners that record none) is refused.
+    ASSERT_EQ(shell("python3 -c \"import sqlite3,sys; sqlite3.connect(sys.argv[1]).execute('create table runs (id "
+                    "integer)')\" " +
+                    dir + "/none.db")
+                  .status,
+              0);
+    const Output none =
+        shell("python3 " + hcd::test::sourcePath("bench/summarize_anytime.py") + " " + dir + "/none.db");
+    EXPECT_EQ(none.status, 1) << none.output;
+    EXPECT_NE(none.output.find("no progress samples"), std::string::npos) << none.output;
+}
+
 // Planner names "planner[configuration]" of a log, in its order (the lines after "N planners").
 std::string configurationsOf(const std::string &log)
 {

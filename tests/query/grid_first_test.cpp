@@ -184,6 +184,8 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         ClearanceGridSettings reachSettings = settings;
         reachSettings.markerReach = 0.2 * scale;
         const ClearanceGrid reachGrid(*mesh, &solids, markers, reachSettings);
+        // Without the point-in-solid query no cell is labelled: nothing is certainly inside.
+        const ClearanceGrid unlabelled(*mesh, nullptr, markers, settings);
         ASSERT_GT(markers.size(), 8u);
         int fewMarkersNear = 0, beyondReach = 0, cappedBelow = 0;
         std::uniform_real_distribution<double> u(-1.6, 1.6), far(-4.0, 4.0);
@@ -230,6 +232,7 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
             ASSERT_EQ(few.outside, s.outside);
             expectClearsAgreesWithAt(grid, p, s, scale);
             expectCertainlyInsideAgreesWithAt(grid, p, s, scale);
+            ASSERT_FALSE(unlabelled.certainlyInside(p, 0.0));
             ASSERT_FALSE(s.inside && s.outside);
             if (s.inside)
                 ASSERT_TRUE(solids.insideAnySolid(p));
@@ -246,6 +249,8 @@ TEST(ClearanceGrid, BoundsAreLowerBoundsAndSidesAreExact)
         EXPECT_GT(fewMarkersNear, 10) << "scale " << scale;
         EXPECT_GT(beyondReach, 10) << "scale " << scale;
         EXPECT_GT(cappedBelow, 10) << "scale " << scale;  // the cap is applied
+        for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()})
+            EXPECT_FALSE(grid.certainlyInside(Vec3(bad, 0.0, 0.0), 0.0));
     }
 }
 

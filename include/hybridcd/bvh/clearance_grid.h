@@ -133,7 +133,7 @@ private:
     /// cells. One byte per cell, so that the codes every proof reads stay in cache.
     std::vector<std::uint8_t> cellBytes_;
     /// Bit i % 64 of insideMask_[i / 64]: cell i is inside a solid (its code is 128 or more).
-    /// Empty when no cell is labelled inside.
+    /// Empty when cells are not labelled (no solids, a planar grid, or no closed component).
     std::vector<std::uint64_t> insideMask_;
     /// With at most kMarkersKeptAsPoints markers, the markers themselves: at() measures to each.
     static constexpr std::size_t kMarkersKeptAsPoints = 8;

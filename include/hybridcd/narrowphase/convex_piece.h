@@ -65,20 +65,9 @@ struct VertexGap
 };
 VertexGap vertexGapAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b);
 
-/// Sets `result`'s separating plane (separatingNormal, separatingOffset) to the plane along
-/// `direction` halfway between the vertex projections when they are more than `minimumGap` apart,
-/// and says whether it did; `gap`, when given, receives the gap either way.
-template <class Result>
-bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap, Result &result,
-                   double *gap = nullptr)
-{
-    const VertexGap along = vertexGapAlong(direction, a, b);
-    if (gap)
-        *gap = along.gap;
-    if (!(along.gap > minimumGap))
-        return false;
-    result.separatingNormal = along.normal;
-    result.separatingOffset = along.offset;
-    return true;
-}
+/// Sets `normal` and `offset` to the plane along `direction` halfway between the vertex
+/// projections when they are more than `minimumGap` apart (leaves them as they are otherwise), and
+/// says whether it did; `gap`, when given, receives the gap either way.
+bool separateAlong(const Vec3 &direction, const ConvexPiece &a, const ConvexPiece &b, double minimumGap, Vec3 &normal,
+                   double &offset, double *gap = nullptr);
 }  // namespace hcd
