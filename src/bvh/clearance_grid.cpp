@@ -224,6 +224,7 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
         // point-in-solid test; every run of the region takes its answer.
         const FreeRuns runs = freeRegionRuns(occupiedCell, nx_, ny_, nz_);
         std::vector<std::uint8_t> runInside(runs.first.size(), 0);
+        insideMask_.assign((cellCount + 63) / 64, 0);
         for (std::size_t r = 0; r < runs.first.size(); ++r)
         {
             if (runs.root[r] != r)
@@ -236,12 +237,11 @@ ClearanceGrid::ClearanceGrid(const TriangleMesh &mesh, const SolidQuery *solids,
             }
             if (runInside[r])
                 for (std::size_t i = runs.first[r]; i < runs.end[r]; ++i)
+                {
                     cellBytes_[i] = std::uint8_t(128 + unitsAt(i));
+                    insideMask_[i / 64] |= std::uint64_t(1) << (i % 64);
+                }
         }
-        insideMask_.assign((cellCount + 63) / 64, 0);
-        for (std::size_t i = 0; i < cellCount; ++i)
-            if (cellBytes_[i] >= 128)
-                insideMask_[i / 64] |= std::uint64_t(1) << (i % 64);
     }
     hasMarkers_ = !markers.empty() && !planar;
 

@@ -98,8 +98,8 @@ TEST(Bench, AnytimeSummaryTakesTheFirstPathAndTheFinalCost)
         "0.2, 12.0), (3, 0.2, inf), (3, 0.4, inf), (4, 0.05, inf), (4, 0.1, 9.5), (5, 0.3, 11.0)]); "
         "c.commit()";
     ASSERT_EQ(shell("python3 -c \"" + py + "\" " + dir + "/a.db").status, 0);
-    const Output summary =
-        shell("python3 " + hcd::test::sourcePath("bench/summarize_anytime.py") + " " + dir + "/a.db");
+    const std::string summarize = "python3 " + hcd::test::sourcePath("bench/summarize_anytime.py") + " ";
+    const Output summary = shell(summarize + dir + "/a.db");
     ASSERT_EQ(summary.status, 0) << summary.output;
     // Medians: OMPL.app's first paths 0.2, 0.4, 5 -> 0.4 s, costs 10, 12, inf -> 12; hybridcd's
     // 0.1, 0.3 -> 0.2 s, costs 9, 11 -> 10.
@@ -115,8 +115,7 @@ TEST(Bench, AnytimeSummaryTakesTheFirstPathAndTheFinalCost)
                     dir + "/none.db")
                   .status,
               0);
-    const Output none =
-        shell("python3 " + hcd::test::sourcePath("bench/summarize_anytime.py") + " " + dir + "/none.db");
+    const Output none = shell(summarize + dir + "/none.db");
     EXPECT_EQ(none.status, 1) << none.output;
     EXPECT_NE(none.output.find("no progress samples"), std::string::npos) << none.output;
 }
