@@ -75,6 +75,9 @@ struct CheckerSlot
     std::shared_ptr<const CollisionChecker> instance;
     std::shared_ptr<StateValidityChecker> validity;
     std::shared_ptr<const Scene> scene;  ///< scene problems: the scene checked with `checker`
+    /// OMPL.app's own set-up (FCL, OMPL's discrete motion checks): planned with OMPL's default
+    /// nearest-neighbour structure, as OMPL.app plans, whatever --neighbors says.
+    bool omplAppSetup = false;
 };
 
 // OMPL's default validity-checking resolution (a fraction of the state space's extent), which
@@ -154,6 +157,10 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
                     throw UsageError("the configuration " + label + " is given twice");
             slots.push_back({name, motion, options, label, nullptr, nullptr, nullptr});
         }
+    const CheckerEntry *fclEntry = checkers.find("fcl");
+    if (fclEntry)
+        for (CheckerSlot &s : slots)
+            s.omplAppSetup = s.label == labelOf(*fclEntry, {}, MotionCheck::Discrete, kinodynamic);
     if (baseline == "omplapp")
     {
         const CheckerEntry *fcl = checkers.find("fcl");
@@ -164,7 +171,7 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
         for (const CheckerSlot &s : slots)
             listed = listed || s.label == label;
         if (!listed)
-            slots.push_back({"fcl", MotionCheck::Discrete, {}, label, nullptr, nullptr, nullptr});
+            slots.push_back({"fcl", MotionCheck::Discrete, {}, label, nullptr, nullptr, nullptr, true});
     }
     return slots;
 }
@@ -294,6 +301,9 @@ void declareBench(CommandLine &cl)
         .option("baseline", "omplapp|none",
                 "also run OMPL.app's set-up, fcl+discrete(0.01): FCL and OMPL's DiscreteMotionValidator "
                 "(default omplapp)")
+        .option("neighbors", "poses|ompl",
+                "nearest neighbours of rrtconnect and rrt in hybridcd's configurations (default poses); "
+                "OMPL.app's set-up always plans with ompl's default")
         .option("goal-threshold", "D",
                 "kinodynamic problems: distance to the goal state that counts (default 1, OMPL.app's)")
         .option("seed", "N",
@@ -347,6 +357,10 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     // make exactly the whole benchmark.
     const unsigned shardRuns = unsigned((totalRuns - shardIndex + shardCount - 1) / shardCount);
     const double timeLimit = cl.timeLimit("time", cfg.benchmark.timeLimit);
+    const std::string neighborName = cl.text("neighbors", "poses");
+    if (neighborName != "poses" && neighborName != "ompl")
+        throw UsageError("option --neighbors needs poses or ompl, got '" + neighborName + "'");
+    const NeighborSearch neighbors = parseNeighborSearch(neighborName);
     const double memoryLimit = cl.positiveNumber("memory", cfg.benchmark.memoryLimit);
     if (shardRuns == 0)
         throw UsageError("shard " + std::to_string(shardIndex) + "/" + std::to_string(shardCount) + " has no runs of " +
@@ -379,7 +393,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     std::optional<ControlProblem> control;
     std::unique_ptr<ompl::tools::Benchmark> benchmarkPtr;
     std::function<std::shared_ptr<StateValidityChecker>(const CheckerSlot &)> install;
-    std::function<ompl::base::PlannerPtr(const PlannerRequest &)> plannerOf;
+    std::function<ompl::base::PlannerPtr(const PlannerRequest &, const CheckerSlot &)> plannerOf;
     if (kinodynamic)
     {
         controlSettings.motion = slots.front().motion;
@@ -387,7 +401,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         install = [&](const CheckerSlot &slot) {
             return installControlChecker(*control, problem, slot.instance, slot.motion);
         };
-        plannerOf = [&](const PlannerRequest &request) {
+        plannerOf = [&](const PlannerRequest &request, const CheckerSlot &) {
             return makeControlPlanner(request, control->setup->getSpaceInformation());
         };
         benchmarkPtr = std::make_unique<ompl::tools::Benchmark>(*control->setup, cfg.name);
@@ -399,8 +413,9 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         install = [&](const CheckerSlot &slot) {
             return installChecker(*geometric, problem, slot.instance, slot.motion);
         };
-        plannerOf = [&](const PlannerRequest &request) {
-            return makePlanner(request, geometric->setup->getSpaceInformation());
+        plannerOf = [&](const PlannerRequest &request, const CheckerSlot &slot) {
+            return makePlanner(request, geometric->setup->getSpaceInformation(),
+                               slot.omplAppSetup ? NeighborSearch::OmplDefault : neighbors);
         };
         benchmarkPtr = std::make_unique<ompl::tools::Benchmark>(*geometric->setup, cfg.name);
     }
@@ -423,7 +438,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         labels += (c ? "," : "") + slots[c].label;
         std::vector<ompl::base::PlannerPtr> planners;
         for (const PlannerRequest &request : requests)
-            planners.push_back(plannerOf(request));
+            planners.push_back(plannerOf(request, slots[c]));
         requireDistinctPlannerNames(planners, cl, cfg);
         for (const ompl::base::PlannerPtr &planner : planners)
         {
@@ -443,6 +458,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         benchmark.addExperimentParameter("goal_threshold", "REAL", shortNumber(controlSettings.goalThreshold));
     }
     benchmark.addExperimentParameter("shard_index", "INTEGER", std::to_string(shardIndex));
+    benchmark.addExperimentParameter("neighbors", "VARCHAR(16)", neighborName);
     benchmark.addExperimentParameter("shard_count", "INTEGER", std::to_string(shardCount));
     benchmark.addExperimentParameter("total_runs", "INTEGER", std::to_string(totalRuns));
     if (seeded)

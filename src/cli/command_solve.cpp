@@ -154,6 +154,9 @@ void declareSolve(CommandLine &cl)
         .option("sampler", "uniform|retraction",
                 "state sampling (default uniform); retraction pushes colliding samples out onto the "
                 "obstacles' surfaces")
+        .option("neighbors", "poses|ompl",
+                "nearest neighbours of rrtconnect and rrt (default poses: a k-d tree over the poses, the "
+                "same neighbours as ompl's default GNAT, found with fewer distances)")
         .option("goal-threshold", "D", "kinodynamic problems: distance to the goal state that counts (default 1)")
         .option("propagation-step", "SECONDS", "kinodynamic problems: the propagation step (default 0.2)")
         .option("control-steps", "MIN,MAX", "kinodynamic problems: steps each control lasts (default 1,20)")
@@ -194,6 +197,10 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::string sampling = cl.text("sampler", "uniform");
     if (sampling != "uniform" && sampling != "retraction")
         throw UsageError("option --sampler needs uniform or retraction, got '" + sampling + "'");
+    const std::string neighborName = cl.text("neighbors", "poses");
+    if (neighborName != "poses" && neighborName != "ompl")
+        throw UsageError("option --neighbors needs poses or ompl, got '" + neighborName + "'");
+    const NeighborSearch neighbors = parseNeighborSearch(neighborName);
 
     ControlSettings controlSettings;
     controlSettings.motion = motion;
@@ -246,7 +253,7 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     if (sampling == "retraction")
         useRetractionSampling(planning);
     PlannerRequest request{cl.text("planner", "rrtconnect"), "", params};
-    planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation()));
+    planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation(), neighbors));
     planning.setup->setup();
 
     SolveProgress::Options progressOptions;
@@ -269,6 +276,7 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
               << "planner: " << planning.setup->getPlanner()->getName() << '\n'
               << "motion check: " << cl.text("motion", "continuous") << '\n'
               << "sampler: " << sampling << '\n'
+              << "nearest neighbours: " << neighborName << '\n'
               << "solved: "
               << (solved        ? "yes"
                   : approximate ? "no, approximate path only"

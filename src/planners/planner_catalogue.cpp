@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/planners/planner_catalogue.h"
 
+#include "hybridcd/planners/pose_nearest_neighbors.h"
+
 #include <ompl/control/planners/est/EST.h>
 #include <ompl/control/planners/kpiece/KPIECE1.h>
 #include <ompl/control/planners/pdst/PDST.h>
@@ -45,6 +47,7 @@
 #include <ompl/geometric/planners/sbl/pSBL.h>
 #include <ompl/geometric/planners/sst/SST.h>
 #include <ompl/geometric/planners/stride/STRIDE.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
 #include <cctype>
@@ -67,13 +70,73 @@ namespace
 
 namespace og = ompl::geometric;
 
-using Factory = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)>;
+using Factory = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &, NeighborSearch)>;
 
 template <typename T>
 Factory make()
 {
-    return [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr { return std::make_shared<T>(si); };
+    return [](const ompl::base::SpaceInformationPtr &si, NeighborSearch) -> ompl::base::PlannerPtr {
+        return std::make_shared<T>(si);
+    };
 }
+
+// T, or WithPoses (T searching its trees with PoseNearestNeighbors) when asked for.
+template <typename T, typename WithPoses>
+Factory makeTree()
+{
+    return [](const ompl::base::SpaceInformationPtr &si, NeighborSearch search) -> ompl::base::PlannerPtr {
+        if (search == NeighborSearch::Poses)
+            return std::make_shared<WithPoses>(si);
+        return std::make_shared<T>(si);
+    };
+}
+
+// The tree planners' nearest neighbours found by PoseNearestNeighbors on SE(2) and SE(3): the
+// same neighbours as OMPL's GNAT finds (so the same tree for the same seed), measured with a
+// fraction of the distances. Any other space keeps OMPL's default. setup() makes the structures
+// only where the planner has none yet, so they are installed before it.
+template <typename Motion>
+std::shared_ptr<ompl::NearestNeighbors<Motion *>> poseNeighbors(const ompl::base::SpaceInformationPtr &si)
+{
+    const std::optional<PoseMetric> metric = PoseMetric::of(*si->getStateSpace());
+    if (!metric)
+        return nullptr;
+    // OMPL's GNAT takes a seed from OMPL's seed sequence (for its pivot selector) when it is made;
+    // taking one here too keeps the planner's sampler on the seed it gets with GNAT, so that a
+    // seeded run plans the same tree with either structure.
+    const ompl::RNG seedTakenAsGnatTakesIt;
+    (void)seedTakenAsGnatTakesIt;
+    return std::make_shared<PoseNearestNeighbors<Motion *>>(
+        *metric, [](Motion *const &m) -> const ompl::base::State * { return m->state; });
+}
+
+class RRTConnectWithPoseNeighbors : public og::RRTConnect
+{
+public:
+    explicit RRTConnectWithPoseNeighbors(const ompl::base::SpaceInformationPtr &si) : og::RRTConnect(si) {}
+
+    void setup() override
+    {
+        if (!tStart_)
+            tStart_ = poseNeighbors<Motion>(si_);
+        if (!tGoal_)
+            tGoal_ = poseNeighbors<Motion>(si_);
+        og::RRTConnect::setup();
+    }
+};
+
+class RRTWithPoseNeighbors : public og::RRT
+{
+public:
+    explicit RRTWithPoseNeighbors(const ompl::base::SpaceInformationPtr &si) : og::RRT(si) {}
+
+    void setup() override
+    {
+        if (!nn_)
+            nn_ = poseNeighbors<Motion>(si_);
+        og::RRT::setup();
+    }
+};
 
 // OMPL 1.5's BIT* (and ABIT*, built on it) reports the sizes of its graph and of its sample set as
 // progress properties, which OMPL's Benchmark reads from a second thread while the planner changes
@@ -121,13 +184,13 @@ const std::map<std::string, Factory> &catalogue()
         {"psbl", make<og::pSBL>()},
         // QRRT takes a sequence of quotient spaces; a single level plans directly in the given space.
         {"qrrt",
-         [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
+         [](const ompl::base::SpaceInformationPtr &si, NeighborSearch) -> ompl::base::PlannerPtr {
              std::vector<ompl::base::SpaceInformationPtr> levels{si};
              return std::make_shared<og::QRRT>(levels, "QRRT");
          }},
         {"rlrt", make<og::RLRT>()},
-        {"rrt", make<og::RRT>()},
-        {"rrtconnect", make<og::RRTConnect>()},
+        {"rrt", makeTree<og::RRT, RRTWithPoseNeighbors>()},
+        {"rrtconnect", makeTree<og::RRTConnect, RRTConnectWithPoseNeighbors>()},
         {"rrtsharp", make<og::RRTsharp>()},
         {"rrtstar", make<og::RRTstar>()},
         {"rrtxstatic", make<og::RRTXstatic>()},
@@ -286,7 +349,17 @@ std::vector<std::string> plannerNames()
     return names;
 }
 
-ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si)
+NeighborSearch parseNeighborSearch(const std::string &name)
+{
+    if (name == "poses")
+        return NeighborSearch::Poses;
+    if (name == "ompl")
+        return NeighborSearch::OmplDefault;
+    throw std::invalid_argument("unknown nearest-neighbour search '" + name + "'; expected poses or ompl");
+}
+
+ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si,
+                                   NeighborSearch search)
 {
     const std::string type = toLower(trim(request.type));
     const auto it = catalogue().find(type);
@@ -294,7 +367,7 @@ ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::ba
         throw std::invalid_argument("unknown planner type '" + request.type +
                                     "'; valid types: " + join(plannerNames()));
 
-    ompl::base::PlannerPtr planner = it->second(si);
+    ompl::base::PlannerPtr planner = it->second(si, search);
     applyRequest(request, type, *planner);
     return planner;
 }

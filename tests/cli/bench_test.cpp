@@ -268,7 +268,7 @@ TEST(Bench, ShardsUnderGnuParallelAndSlurmMergeIntoTheUnshardedExperiment)
         {dir + "/p0.log " + dir + "/p1.log " + dir + "/seed2.log",
          ": seed 123, but shard 2/3 of base seed 5 is seeded with"},
         {dir + "/p0.log " + dir + "/p1.log " + dir + "/whole.log",
-         "whole.log:7: experiment property shard_count INTEGER is 1 here, 3 in"},
+         "whole.log:8: experiment property shard_count INTEGER is 1 here, 3 in"},
         {dir + "/p0.log " + dir + "/p1.log /no/such.log", "/no/such.log: cannot read"},
     };
     for (const auto &b : bad)

@@ -15,12 +15,28 @@ namespace hcd
 /// Lowercase names of every planner the catalogue can build, sorted.
 std::vector<std::string> plannerNames();
 
+/// How the tree planners rrtconnect and rrt find nearest neighbours.
+enum class NeighborSearch
+{
+    /// PoseNearestNeighbors on SE(2) and SE(3): the neighbours OMPL's default finds, with fewer
+    /// distance evaluations. Other spaces keep OMPL's default.
+    Poses,
+    /// OMPL's default structure (GNAT), as OMPL.app plans.
+    OmplDefault,
+};
+
+/// "poses" or "ompl"; throws std::invalid_argument naming both for anything else.
+NeighborSearch parseNeighborSearch(const std::string &name);
+
 /// Builds the planner; applies displayName (Planner::setName) and every parameter through OMPL's ParamSet
 /// (planner->params().hasParam / setParam). Throws std::invalid_argument: for an unknown type, the message lists all
 /// valid names; for an unknown parameter, the message names the planner and lists that planner's valid parameter names
 /// (from params().getParamNames()); for a value OMPL rejects (setParam returns false), it names the parameter and the
 /// value.
-ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si);
+/// `search` chooses the nearest-neighbour structure of rrtconnect and rrt; the other planners
+/// ignore it.
+ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si,
+                                   NeighborSearch search = NeighborSearch::Poses);
 
 /// The progress properties of OMPL 1.5's BIT* and ABIT* that read the planner's graph while it
 /// changes it (OMPL issue 779). makePlanner leaves them out: OMPL's Benchmark reads progress from a
