@@ -63,10 +63,7 @@ public:
         linear_.add(s);
     }
 
-    void remove(StatePtr s)
-    {
-        EXPECT_EQ(poses_->remove(s), linear_.remove(s));
-    }
+    void remove(StatePtr s) { EXPECT_EQ(poses_->remove(s), linear_.remove(s)); }
 
     // The same nearest distance, the same k nearest distances, the same distances within radius.
     void expectSameAnswers(StatePtr query, std::size_t k, double radius)
@@ -359,10 +356,10 @@ TEST(PoseNearestNeighbors, RRTConnectPlansTheSameTreeAsWithOmplsDefault)
         // whose position is outside the wall or inside the window.
         auto setup = std::make_shared<ompl::geometric::SimpleSetup>(space);
         setup->setStateValidityChecker([planar](const ob::State *s) {
-            const double x = planar ? s->as<ob::SE2StateSpace::StateType>()->getX()
-                                    : s->as<ob::SE3StateSpace::StateType>()->getX();
-            const double y = planar ? s->as<ob::SE2StateSpace::StateType>()->getY()
-                                    : s->as<ob::SE3StateSpace::StateType>()->getY();
+            const double x =
+                planar ? s->as<ob::SE2StateSpace::StateType>()->getX() : s->as<ob::SE3StateSpace::StateType>()->getX();
+            const double y =
+                planar ? s->as<ob::SE2StateSpace::StateType>()->getY() : s->as<ob::SE3StateSpace::StateType>()->getY();
             return std::fabs(x) > 0.1 || std::fabs(y - 0.6) < 0.02;
         });
         ob::ScopedState<> start(space), goal(space);

@@ -3,7 +3,10 @@
 #include <ompl/base/State.h>
 #include <ompl/base/StateSpace.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <optional>
 
 namespace hcd
@@ -41,15 +44,80 @@ public:
     /// The coordinates of a state of the space this metric was made from.
     PoseCoordinates coordinates(const ompl::base::State *state) const;
     /// A lower bound on the distance from p to any pose whose coordinates lie in [low, high]
-    /// (both of dimensions() values) and whose rotation is boundable.
-    double lowerBound(const PoseCoordinates &p, const double *low, const double *high) const;
+    /// (both of dimensions() values) and whose rotation is boundable. A search may pass the
+    /// distance it no longer needs to beat as `enough`: once the translation's part reaches it,
+    /// that part is returned (still a lower bound) without the rotation's.
+    double lowerBound(const PoseCoordinates &p, const double *low, const double *high,
+                      double enough = std::numeric_limits<double>::infinity()) const
+    {
+        const auto &v = p.values;
+        double squared = 0.0;
+        for (int i = 0; i < (planar_ ? 2 : 3); ++i)
+        {
+            const double g = intervalGap(v[i], low[i], high[i]);
+            squared += g * g;
+        }
+        const double translation = translationWeight_ * std::sqrt(squared);
+        if (!p.rotationBoundable || translation >= enough)
+            return translation * (1.0 - kWeightedSumSlack);
+        double angle = 0.0;
+        if (planar_)
+        {
+            if (v[2] < low[2] || v[2] > high[2])
+                angle = std::min(wrappedYawDifference(v[2], low[2]), wrappedYawDifference(v[2], high[2])) -
+                        kWrappedYawSlack;
+        }
+        else
+        {
+            // For unit quaternions the chord min(|q1 - q2|, |q1 + q2|) = 2 sin(angle / 2) is at
+            // most the angle, and the box's nearest point to q (or to -q) is at most the chord.
+            double plus = 0.0;
+            double minus = 0.0;
+            for (int i = 3; i < 7; ++i)
+            {
+                const double g = intervalGap(v[i], low[i], high[i]);
+                const double h = intervalGap(-v[i], low[i], high[i]);
+                plus += g * g;
+                minus += h * h;
+            }
+            angle = std::sqrt(std::min(plus, minus)) - kChordSlack;
+        }
+        return (translation + rotationWeight_ * std::max(angle, 0.0)) * (1.0 - kWeightedSumSlack);
+    }
     /// dimensions() weights that make a coordinate's spread comparable with the others' when
     /// choosing where to split: the translation weight, then the rotation's.
     double spreadWeight(int dimension) const;
 
+    static constexpr double kPi = 3.14159265358979323846;
+
 private:
+    // OMPL's SO(3) distance is 0 where |q1 . q2| > 1 - 1e-9, i.e. below an angle of 4.5e-5 rad,
+    // and quaternions whose norm is off 1 by 1e-9 move the angle by up to 6.3e-5 rad: the chord
+    // bound gives up this much so that it stays below OMPL's value.
+    static constexpr double kChordSlack = 2e-4;
+    // The wrapped yaw difference is a subtraction and a comparison; its rounding is far below this.
+    static constexpr double kWrappedYawSlack = 1e-9;
+    // Rounding of the weighted sum.
+    static constexpr double kWeightedSumSlack = 1e-12;
+
+    // Distance from v to the interval [low, high] (0 inside).
+    static double intervalGap(double v, double low, double high)
+    {
+        const double outside = low - v > v - high ? low - v : v - high;
+        return outside > 0.0 ? outside : 0.0;
+    }
+
+    // OMPL's SO(2) distance.
+    static double wrappedYawDifference(double a, double b)
+    {
+        const double d = std::fabs(a - b);
+        return d > kPi ? 2.0 * kPi - d : d;
+    }
+
     PoseMetric(bool planar, double translationWeight, double rotationWeight)
-        : planar_(planar), translationWeight_(translationWeight), rotationWeight_(rotationWeight)
+        : planar_(planar),
+          translationWeight_(translationWeight),
+          rotationWeight_(rotationWeight)
     {
     }
 

@@ -109,7 +109,7 @@ public:
     void list(std::vector<T> &data) const override { data = elements_; }
 
 private:
-    static constexpr std::size_t kLeafCapacity = 8;
+    static constexpr std::size_t kLeafCapacity = 16;
     // (distance, element index); kept as a max-heap on distance during a search.
     using Neighbours = std::vector<std::pair<double, std::uint32_t>>;
 
@@ -263,7 +263,7 @@ private:
             return;
         }
         const auto boundOf = [&](const Node &node) {
-            return metric_.lowerBound(query, node.low.data(), node.high.data());
+            return metric_.lowerBound(query, node.low.data(), node.high.data(), bar());
         };
         // Depth first, the nearer child first; a box whose bound exceeds the bar holds nothing
         // that could enter best.
