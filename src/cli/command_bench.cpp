@@ -302,7 +302,7 @@ void declareBench(CommandLine &cl)
                 "also run OMPL.app's set-up, fcl+discrete(0.01): FCL and OMPL's DiscreteMotionValidator "
                 "(default omplapp)")
         .option("neighbors", "poses|ompl",
-                "nearest neighbours of rrtconnect and rrt in hybridcd's configurations (default poses); "
+                "nearest neighbours of rrtconnect, rrt, prm and prmstar in hybridcd's configurations (default poses); "
                 "OMPL.app's set-up always plans with ompl's default")
         .option("goal-threshold", "D",
                 "kinodynamic problems: distance to the goal state that counts (default 1, OMPL.app's)")

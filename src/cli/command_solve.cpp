@@ -155,7 +155,7 @@ void declareSolve(CommandLine &cl)
                 "state sampling (default uniform); retraction pushes colliding samples out onto the "
                 "obstacles' surfaces")
         .option("neighbors", "poses|ompl",
-                "nearest neighbours of rrtconnect and rrt (default poses: a k-d tree over the poses, the "
+                "nearest neighbours of rrtconnect, rrt, prm, prmstar (default poses: a k-d tree over the poses, the "
                 "same neighbours as ompl's default GNAT, found with fewer distances)")
         .option("goal-threshold", "D", "kinodynamic problems: distance to the goal state that counts (default 1)")
         .option("propagation-step", "SECONDS", "kinodynamic problems: the propagation step (default 0.2)")

@@ -80,7 +80,7 @@ Factory make()
     };
 }
 
-// T, or WithPoses (T searching its trees with PoseNearestNeighbors) when asked for.
+// T, or WithPoses (T searching its trees or roadmap with PoseNearestNeighbors) when asked for.
 template <typename T, typename WithPoses>
 Factory makeTree()
 {
@@ -91,12 +91,13 @@ Factory makeTree()
     };
 }
 
-// The tree planners' nearest neighbours found by PoseNearestNeighbors on SE(2) and SE(3): the
-// same neighbours as OMPL's GNAT finds (so the same tree for the same seed), measured with a
-// fraction of the distances. Any other space keeps OMPL's default. setup() makes the structures
-// only where the planner has none yet, so they are installed before it.
-template <typename Motion>
-std::shared_ptr<ompl::NearestNeighbors<Motion *>> poseNeighbors(const ompl::base::SpaceInformationPtr &si)
+// The planners' nearest neighbours found by PoseNearestNeighbors on SE(2) and SE(3): the same
+// neighbours as OMPL's GNAT finds (so the same tree or roadmap for the same seed), measured with a
+// fraction of the distances. Any other space keeps OMPL's default (nullptr here). setup() makes the
+// structures only where the planner has none yet, so they are installed before it.
+template <typename Element>
+std::shared_ptr<ompl::NearestNeighbors<Element>> poseNeighbors(const ompl::base::SpaceInformationPtr &si,
+                                                               typename PoseNearestNeighbors<Element>::StateOf stateOf)
 {
     const std::optional<PoseMetric> metric = PoseMetric::of(*si->getStateSpace());
     if (!metric)
@@ -106,8 +107,14 @@ std::shared_ptr<ompl::NearestNeighbors<Motion *>> poseNeighbors(const ompl::base
     // seeded run plans the same tree with either structure.
     const ompl::RNG seedTakenAsGnatTakesIt;
     (void)seedTakenAsGnatTakesIt;
-    return std::make_shared<PoseNearestNeighbors<Motion *>>(
-        *metric, [](Motion *const &m) -> const ompl::base::State * { return m->state; });
+    return std::make_shared<PoseNearestNeighbors<Element>>(*metric, std::move(stateOf));
+}
+
+// RRT's and RRTConnect's tree nodes hold their state.
+template <typename Motion>
+std::shared_ptr<ompl::NearestNeighbors<Motion *>> motionNeighbors(const ompl::base::SpaceInformationPtr &si)
+{
+    return poseNeighbors<Motion *>(si, [](Motion *const &m) -> const ompl::base::State * { return m->state; });
 }
 
 class RRTConnectWithPoseNeighbors : public og::RRTConnect
@@ -118,9 +125,9 @@ public:
     void setup() override
     {
         if (!tStart_)
-            tStart_ = poseNeighbors<Motion>(si_);
+            tStart_ = motionNeighbors<Motion>(si_);
         if (!tGoal_)
-            tGoal_ = poseNeighbors<Motion>(si_);
+            tGoal_ = motionNeighbors<Motion>(si_);
         og::RRTConnect::setup();
     }
 };
@@ -133,7 +140,7 @@ public:
     void setup() override
     {
         if (!nn_)
-            nn_ = poseNeighbors<Motion>(si_);
+            nn_ = motionNeighbors<Motion>(si_);
         og::RRT::setup();
     }
 };
@@ -150,6 +157,31 @@ public:
     {
         for (const char *name : kThreadUnsafeBitStarProgress)
             this->plannerProgressProperties_.erase(name);
+    }
+};
+
+// PRM's and PRM*'s roadmap vertices hold their state in a property map of the graph. PRM grows
+// the roadmap under its graph mutex, so one thread at a time searches it, as with OMPL's default
+// (GNAT without thread safety).
+template <typename Prm>
+class PrmWithPoseNeighbors : public Prm
+{
+public:
+    explicit PrmWithPoseNeighbors(const ompl::base::SpaceInformationPtr &si) : Prm(si) {}
+
+    void setup() override
+    {
+        using Vertex = typename Prm::Vertex;
+        if (!this->nn_)
+        {
+            this->nn_ = poseNeighbors<Vertex>(
+                this->si_, [this](const Vertex &v) -> const ompl::base::State * { return this->stateProperty_[v]; });
+            // PRM::setup gives the roadmap's structure its distance only when it makes the structure.
+            if (this->nn_)
+                this->nn_->setDistanceFunction(
+                    [this](const Vertex a, const Vertex b) { return this->distanceFunction(a, b); });
+        }
+        Prm::setup();
     }
 };
 
@@ -177,8 +209,8 @@ const std::map<std::string, Factory> &catalogue()
         {"lbkpiece", make<og::LBKPIECE1>()},
         {"lbtrrt", make<og::LBTRRT>()},
         {"pdst", make<og::PDST>()},
-        {"prm", make<og::PRM>()},
-        {"prmstar", make<og::PRMstar>()},
+        {"prm", makeTree<og::PRM, PrmWithPoseNeighbors<og::PRM>>()},
+        {"prmstar", makeTree<og::PRMstar, PrmWithPoseNeighbors<og::PRMstar>>()},
         {"projest", make<og::ProjEST>()},
         {"prrt", make<og::pRRT>()},
         {"psbl", make<og::pSBL>()},

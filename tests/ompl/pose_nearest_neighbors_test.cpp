@@ -20,6 +20,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace hcd;
@@ -347,7 +348,7 @@ TEST(PoseNearestNeighbors, RemovalsAndOddValuesMatchLinearSearch)
 
 // With either structure, the same seed plans the same tree and so the same path: the structure
 // finds the very neighbours OMPL's default finds.
-TEST(PoseNearestNeighbors, RRTConnectPlansTheSameTreeAsWithOmplsDefault)
+TEST(PoseNearestNeighbors, PlannersPlanTheSameTreeAsWithOmplsDefault)
 {
     for (const bool planar : {false, true})
     {
@@ -381,31 +382,51 @@ TEST(PoseNearestNeighbors, RRTConnectPlansTheSameTreeAsWithOmplsDefault)
         // once here, so that both runs below start from the same seed.
         setup->setup();
 
-        std::vector<std::vector<double>> paths[2];
-        std::size_t vertices[2] = {0, 0};
-        const NeighborSearch searches[] = {NeighborSearch::Poses, NeighborSearch::OmplDefault};
-        for (int run = 0; run < 2; ++run)
+        for (const char *planner : {"rrtconnect", "rrt"})
         {
+            const std::string what = std::string(planner) + (planar ? " on SE(2)" : " on SE(3)");
+            std::vector<std::vector<double>> paths[2];
+            std::size_t vertices[2] = {0, 0};
+            const NeighborSearch searches[] = {NeighborSearch::Poses, NeighborSearch::OmplDefault};
+            for (int run = 0; run < 2; ++run)
+            {
+                const auto level = ompl::msg::getLogLevel();
+                ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+                ompl::RNG::setSeed(std::uint_fast32_t(test::seeded(21)));
+                setup->clear();
+                setup->setPlanner(makePlanner({planner, "", {}}, setup->getSpaceInformation(), searches[run]));
+                const ob::PlannerStatus status = setup->solve(ob::timedPlannerTerminationCondition(60.0));
+                ompl::msg::setLogLevel(level);
+                ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << what;
+                ob::PlannerData data(setup->getSpaceInformation());
+                setup->getPlannerData(data);
+                vertices[run] = data.numVertices();
+                for (const ob::State *s : setup->getSolutionPath().getStates())
+                {
+                    std::vector<double> values;
+                    space->copyToReals(values, s);
+                    paths[run].push_back(values);
+                }
+            }
+            EXPECT_GT(vertices[0], 50u) << what << ": the window should take a tree of some size to find";
+            EXPECT_EQ(vertices[0], vertices[1]) << what;
+            EXPECT_EQ(paths[0], paths[1]) << what;
+        }
+        // PRM and PRM* find their roadmap neighbours with the structure too (their roadmaps depend
+        // on the timing of PRM's second thread, so only the solution is asked for here).
+        for (const char *planner : {"prm", "prmstar"})
+        {
+            setup->clear();
+            setup->setPlanner(makePlanner({planner, "", {}}, setup->getSpaceInformation(), NeighborSearch::Poses));
             const auto level = ompl::msg::getLogLevel();
             ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-            ompl::RNG::setSeed(std::uint_fast32_t(test::seeded(21)));
-            setup->clear();
-            setup->setPlanner(makePlanner({"rrtconnect", "", {}}, setup->getSpaceInformation(), searches[run]));
-            const ob::PlannerStatus status = setup->solve(ob::timedPlannerTerminationCondition(60.0));
+            // The roadmap planners grow their roadmap until the time is up (a path is found within
+            // milliseconds here).
+            const ob::PlannerStatus status = setup->solve(ob::timedPlannerTerminationCondition(2.0));
             ompl::msg::setLogLevel(level);
-            ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << (planar ? "SE2" : "SE3");
-            ob::PlannerData data(setup->getSpaceInformation());
-            setup->getPlannerData(data);
-            vertices[run] = data.numVertices();
-            for (const ob::State *s : setup->getSolutionPath().getStates())
-            {
-                std::vector<double> values;
-                space->copyToReals(values, s);
-                paths[run].push_back(values);
-            }
+            EXPECT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << planner << (planar ? " on SE(2)" : " on SE(3)");
+            if (status == ob::PlannerStatus::EXACT_SOLUTION)
+                EXPECT_TRUE(setup->getSolutionPath().check()) << planner;
         }
-        EXPECT_GT(vertices[0], 50u) << "the window should take a tree of some size to find";
-        EXPECT_EQ(vertices[0], vertices[1]) << (planar ? "SE2" : "SE3");
-        EXPECT_EQ(paths[0], paths[1]) << (planar ? "SE2" : "SE3");
     }
 }

@@ -15,7 +15,7 @@ namespace hcd
 /// Lowercase names of every planner the catalogue can build, sorted.
 std::vector<std::string> plannerNames();
 
-/// How the tree planners rrtconnect and rrt find nearest neighbours.
+/// How rrtconnect, rrt, prm and prmstar find nearest neighbours.
 enum class NeighborSearch
 {
     /// PoseNearestNeighbors on SE(2) and SE(3): the neighbours OMPL's default finds, with fewer
@@ -33,7 +33,7 @@ NeighborSearch parseNeighborSearch(const std::string &name);
 /// valid names; for an unknown parameter, the message names the planner and lists that planner's valid parameter names
 /// (from params().getParamNames()); for a value OMPL rejects (setParam returns false), it names the parameter and the
 /// value.
-/// `search` chooses the nearest-neighbour structure of rrtconnect and rrt; the other planners
+/// `search` chooses the nearest-neighbour structure of rrtconnect, rrt, prm and prmstar; the others
 /// ignore it.
 ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si,
                                    NeighborSearch search = NeighborSearch::Poses);
