@@ -278,8 +278,14 @@ private:
             const Node &node = nodes_[n];
             if (node.firstChild < 0)
             {
+                // A pose's own coordinates bound its distance as a box does: measured only if
+                // the bound leaves it a chance (the bound costs a fraction of OMPL's distance).
                 for (std::uint32_t index : node.items)
-                    consider(index);
+                {
+                    const auto &point = coordinates_[index].values;
+                    if (metric_.lowerBound(query, point.data(), point.data(), bar()) <= bar())
+                        consider(index);
+                }
                 continue;
             }
             const double first = boundOf(nodes_[node.firstChild]);
