@@ -57,6 +57,10 @@ public:
             const double g = intervalGap(v[i], low[i], high[i]);
             squared += g * g;
         }
+        // Far enough by the translation alone, compared in squares (no root): a value just above
+        // `enough` is then still below the distance.
+        if (translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack))
+            return enough * (1.0 + 0.1 * kSquaredComparisonSlack);
         const double translation = translationWeight_ * std::sqrt(squared);
         if (!p.rotationBoundable || translation >= enough)
             return translation * (1.0 - kWeightedSumSlack);
@@ -84,6 +88,14 @@ public:
         }
         return (translation + rotationWeight_ * std::max(angle, 0.0)) * (1.0 - kWeightedSumSlack);
     }
+    /// True when the pose whose coordinates are `point` is certainly further than `bar` from p,
+    /// by the same bound as lowerBound() over the box [point, point]; p's rotation boundable or
+    /// not, point's boundable.
+    bool certainlyBeyond(const PoseCoordinates &p, const double *point, double bar) const
+    {
+        return lowerBound(p, point, point, bar) > bar;
+    }
+
     /// dimensions() weights that make a coordinate's spread comparable with the others' when
     /// choosing where to split: the translation weight, then the rotation's.
     double spreadWeight(int dimension) const;
@@ -99,6 +111,8 @@ private:
     static constexpr double kWrappedYawSlack = 1e-9;
     // Rounding of the weighted sum.
     static constexpr double kWeightedSumSlack = 1e-12;
+    // Rounding of a squared translation against a squared bar.
+    static constexpr double kSquaredComparisonSlack = 1e-9;
 
     // Distance from v to the interval [low, high] (0 inside).
     static double intervalGap(double v, double low, double high)

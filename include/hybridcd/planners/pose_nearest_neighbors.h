@@ -6,6 +6,7 @@
 #include <ompl/util/Exception.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -122,7 +123,8 @@ private:
         int firstChild = -1;  // the two children are nodes_[firstChild] and nodes_[firstChild + 1]; -1: a leaf
         int splitDimension = 0;
         double splitValue = 0.0;
-        std::vector<std::uint32_t> items;  // a leaf's elements
+        std::vector<std::uint32_t> items;           // a leaf's elements
+        std::vector<std::array<double, 7>> points;  // their coordinates, side by side for the search
     };
 
     // Poses the boxes may hold; the others (a value not finite, a quaternion off unit norm, a yaw
@@ -172,7 +174,11 @@ private:
         const int dimension = widestDimension(nodes_[nodeIndex]);
         if (static_cast<std::size_t>(last - first) <= kLeafCapacity || dimension < 0)
         {
-            nodes_[nodeIndex].items.assign(first, last);
+            Node &leaf = nodes_[nodeIndex];
+            leaf.items.assign(first, last);
+            leaf.points.clear();
+            for (const std::uint32_t index : leaf.items)
+                leaf.points.push_back(coordinates_[index].values);
             return;
         }
         std::uint32_t *middle = first + (last - first) / 2;
@@ -218,10 +224,12 @@ private:
             n = node.firstChild + (coordinate(index, node.splitDimension) < node.splitValue ? 0 : 1);
         }
         nodes_[n].items.push_back(index);
+        nodes_[n].points.push_back(coordinates_[index].values);
         if (nodes_[n].items.size() > kLeafCapacity)
         {
             std::vector<std::uint32_t> items = std::move(nodes_[n].items);
             nodes_[n].items.clear();
+            nodes_[n].points.clear();
             build(n, items.data(), items.data() + items.size());
         }
     }
@@ -280,26 +288,23 @@ private:
             {
                 // A pose's own coordinates bound its distance as a box does: measured only if
                 // the bound leaves it a chance (the bound costs a fraction of OMPL's distance).
-                for (std::uint32_t index : node.items)
-                {
-                    const auto &point = coordinates_[index].values;
-                    if (metric_.lowerBound(query, point.data(), point.data(), bar()) <= bar())
-                        consider(index);
-                }
+                for (std::size_t i = 0; i < node.items.size(); ++i)
+                    if (!metric_.certainlyBeyond(query, node.points[i].data(), bar()))
+                        consider(node.items[i]);
                 continue;
             }
             const double first = boundOf(nodes_[node.firstChild]);
             const double second = boundOf(nodes_[node.firstChild + 1]);
-            if (first <= second)
-            {
-                stack.emplace_back(second, node.firstChild + 1);
-                stack.emplace_back(first, node.firstChild);
-            }
-            else
-            {
-                stack.emplace_back(first, node.firstChild);
-                stack.emplace_back(second, node.firstChild + 1);
-            }
+            // The nearer child on top; a child already beyond the bar is left out.
+            const bool firstNearer = first <= second;
+            const std::pair<double, int> near =
+                firstNearer ? std::make_pair(first, node.firstChild) : std::make_pair(second, node.firstChild + 1);
+            const std::pair<double, int> far =
+                firstNearer ? std::make_pair(second, node.firstChild + 1) : std::make_pair(first, node.firstChild);
+            if (far.first <= bar())
+                stack.push_back(far);
+            if (near.first <= bar())
+                stack.push_back(near);
         }
     }
 
