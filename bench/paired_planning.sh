@@ -7,15 +7,18 @@
 #   SEEDS: how many seeds (1..SEEDS); SECONDS: the time limit of each run.
 #   $CONFIGS: the set-ups as CHECKER:MOTION words (default "fcl:discrete auto:discrete auto:continuous",
 #   the first is the reference of the ratios); $PLANNER (default rrtconnect); $HYBRIDCD_CLI (default
-#   build/hybridcd).
+#   build/hybridcd); $NEIGHBORS, the nearest-neighbour search of every set-up (default poses, so that
+#   the set-ups differ in their checks alone; ompl for OMPL's GNAT, as OMPL.app plans). Either
+#   search finds the same neighbours, so the trees stay the same.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-[ $# -ge 3 ] || { sed -n 3,10p "$0" >&2; exit 1; }
+[ $# -ge 3 ] || { sed -n 3,12p "$0" >&2; exit 1; }
 seeds=$1
 limit=$2
 shift 2
 cli=${HYBRIDCD_CLI:-$root/build/hybridcd}
 planner=${PLANNER:-rrtconnect}
+neighbors=${NEIGHBORS:-poses}
 read -r -a configs <<<"${CONFIGS:-fcl:discrete auto:discrete auto:continuous}"
 [ -x "$cli" ] || { echo "paired_planning: no hybridcd tool at $cli (build it, or set HYBRIDCD_CLI)" >&2; exit 1; }
 out=$(mktemp -d)
@@ -43,7 +46,7 @@ for cfg in "$@"; do
       motion=${c##*:}
       log="$out/run.log"
       "$cli" solve "$cfg" --planner "$planner" --seed "$seed" --time "$limit" --checker "$checker" \
-        --motion "$motion" --out "$out/path" >"$log" 2>&1 || true
+        --motion "$motion" --neighbors "$neighbors" --out "$out/path" >"$log" 2>&1 || true
       # "solve: exact solution after T s: N iterations, ..., C s in collision checks"
       line=$(grep -m1 '^solve: exact solution after' "$log" || true)
       if [ -n "$line" ]; then
