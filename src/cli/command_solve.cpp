@@ -239,9 +239,10 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     std::shared_ptr<const CollisionChecker> checker = checkers.make(checkerName, problem.scene, checkerOptions);
     const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
 
-    if (!problem.config.control.empty() && cl.has("sampler"))
-        throw UsageError("option --sampler is for geometric problems; " + problem.config.name +
-                         " is kinodynamic (control = " + problem.config.control + ")");
+    for (const char *option : {"sampler", "neighbors"})
+        if (!problem.config.control.empty() && cl.has(option))
+            throw UsageError(std::string("option --") + option + " is for geometric problems; " + problem.config.name +
+                             " is kinodynamic (control = " + problem.config.control + ")");
     if (!problem.config.control.empty())
         return solveControl(problem, checker, buildSeconds,
                             ControlRun{timeLimit, outPath, cl.text("planner", "kpiece"), params, controlSettings});
