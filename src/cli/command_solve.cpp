@@ -277,7 +277,8 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
               << "planner: " << planning.setup->getPlanner()->getName() << '\n'
               << "motion check: " << cl.text("motion", "continuous") << '\n'
               << "sampler: " << sampling << '\n'
-              << "nearest neighbours: " << neighborName << '\n'
+              << "nearest neighbours: "
+              << (searchesWithPoseNeighbors(*planning.setup->getPlanner()) ? "poses" : "ompl's default") << '\n'
               << "solved: "
               << (solved        ? "yes"
                   : approximate ? "no, approximate path only"

@@ -117,7 +117,21 @@ std::shared_ptr<ompl::NearestNeighbors<Motion *>> motionNeighbors(const ompl::ba
     return poseNeighbors<Motion *>(si, [](Motion *const &m) -> const ompl::base::State * { return m->state; });
 }
 
-class RRTConnectWithPoseNeighbors : public og::RRTConnect
+// Implemented by the planners below, for searchesWithPoseNeighbors.
+class SearchesPoses
+{
+public:
+    virtual ~SearchesPoses() = default;
+    virtual bool searchesPoses() const = 0;
+};
+
+template <typename Element>
+bool isPoseSearch(const std::shared_ptr<ompl::NearestNeighbors<Element>> &nn)
+{
+    return dynamic_cast<const PoseNearestNeighbors<Element> *>(nn.get()) != nullptr;
+}
+
+class RRTConnectWithPoseNeighbors : public og::RRTConnect, public SearchesPoses
 {
 public:
     explicit RRTConnectWithPoseNeighbors(const ompl::base::SpaceInformationPtr &si) : og::RRTConnect(si) {}
@@ -130,9 +144,11 @@ public:
             tGoal_ = motionNeighbors<Motion>(si_);
         og::RRTConnect::setup();
     }
+
+    bool searchesPoses() const override { return isPoseSearch(tStart_) && isPoseSearch(tGoal_); }
 };
 
-class RRTWithPoseNeighbors : public og::RRT
+class RRTWithPoseNeighbors : public og::RRT, public SearchesPoses
 {
 public:
     explicit RRTWithPoseNeighbors(const ompl::base::SpaceInformationPtr &si) : og::RRT(si) {}
@@ -143,6 +159,8 @@ public:
             nn_ = motionNeighbors<Motion>(si_);
         og::RRT::setup();
     }
+
+    bool searchesPoses() const override { return isPoseSearch(nn_); }
 };
 
 // OMPL 1.5's BIT* (and ABIT*, built on it) reports the sizes of its graph and of its sample set as
@@ -162,27 +180,24 @@ public:
 
 // PRM's and PRM*'s roadmap vertices hold their state in a property map of the graph. PRM grows
 // the roadmap under its graph mutex, so one thread at a time searches it, as with OMPL's default
-// (GNAT without thread safety).
+// (GNAT without thread safety). Installed when the planner is made: PRM's max_nearest_neighbors
+// parameter makes OMPL's default structure at once if there is none yet.
 template <typename Prm>
-class PrmWithPoseNeighbors : public Prm
+class PrmWithPoseNeighbors : public Prm, public SearchesPoses
 {
 public:
-    explicit PrmWithPoseNeighbors(const ompl::base::SpaceInformationPtr &si) : Prm(si) {}
-
-    void setup() override
+    explicit PrmWithPoseNeighbors(const ompl::base::SpaceInformationPtr &si) : Prm(si)
     {
         using Vertex = typename Prm::Vertex;
-        if (!this->nn_)
-        {
-            this->nn_ = poseNeighbors<Vertex>(
-                this->si_, [this](const Vertex &v) -> const ompl::base::State * { return this->stateProperty_[v]; });
-            // PRM::setup gives the roadmap's structure its distance only when it makes the structure.
-            if (this->nn_)
-                this->nn_->setDistanceFunction(
-                    [this](const Vertex a, const Vertex b) { return this->distanceFunction(a, b); });
-        }
-        Prm::setup();
+        this->nn_ = poseNeighbors<Vertex>(
+            this->si_, [this](const Vertex &v) -> const ompl::base::State * { return this->stateProperty_[v]; });
+        // PRM gives the roadmap's structure its distance only when it makes the structure itself.
+        if (this->nn_)
+            this->nn_->setDistanceFunction(
+                [this](const Vertex a, const Vertex b) { return this->distanceFunction(a, b); });
     }
+
+    bool searchesPoses() const override { return isPoseSearch(this->nn_); }
 };
 
 // A std::map keeps the names sorted, so plannerNames() needs no extra sort.
@@ -379,6 +394,12 @@ std::vector<std::string> plannerNames()
     for (const auto &entry : catalogue())
         names.push_back(entry.first);
     return names;
+}
+
+bool searchesWithPoseNeighbors(const ompl::base::Planner &planner)
+{
+    const auto *searching = dynamic_cast<const SearchesPoses *>(&planner);
+    return searching && searching->searchesPoses();
 }
 
 NeighborSearch parseNeighborSearch(const std::string &name)

@@ -196,10 +196,13 @@ TEST(PoseMetric, OnlyOmplsOwnPoseSpaces)
 
 TEST(PoseNearestNeighbors, SpatialPosesMatchLinearSearch)
 {
+    const std::pair<double, double> weights[] = {{1.0, 1.0}, {1.0, 0.05}, {1.0, 20.0},
+                                                 {0.3, 1.0}, {1.0, 0.0},  {0.0, 1.0}};
     for (const double extent : {1e-3, 1.0, 300.0})
-        for (const double rotationWeight : {1.0, 0.05, 20.0})
+        for (const auto &[translationWeight, rotationWeight] : weights)
         {
             auto space = se3Space(extent);
+            space->setSubspaceWeight(0, translationWeight);
             space->setSubspaceWeight(1, rotationWeight);
             Fixture f(space);
             ASSERT_TRUE(f.hasMetric());
@@ -257,6 +260,21 @@ TEST(PoseNearestNeighbors, NearAndEqualRotationsMatchLinearSearch)
         f.add(flipped);
         StatePtr duplicate = f.make();
         space->copyState(duplicate, centre);
+        f.add(duplicate);
+        // Norms off 1 by less than OMPL's 1e-9 tolerance.
+        for (const double stretch : {1.0 + 9e-10, 1.0 - 9e-10})
+        {
+            StatePtr stretched = f.make();
+            setSpatial(stretched, p->getX(), p->getY(), p->getZ(), stretch * q.x, stretch * q.y, stretch * q.z,
+                       stretch * q.w);
+            f.add(stretched);
+        }
+    }
+    // More identical poses than a leaf holds: the leaf cannot be split and grows.
+    for (int i = 0; i < 40; ++i)
+    {
+        StatePtr duplicate = f.make();
+        space->copyState(duplicate, centres.front());
         f.add(duplicate);
     }
     for (StatePtr centre : centres)
@@ -381,6 +399,12 @@ TEST(PoseNearestNeighbors, PlannersPlanTheSameTreeAsWithOmplsDefault)
         // The first set-up draws samples of its own (OMPL's sanity checks of the space): done
         // once here, so that both runs below start from the same seed.
         setup->setup();
+        const auto makePlannerAndSetUp = [&](const char *planner, NeighborSearch search) {
+            ob::PlannerPtr made = makePlanner({planner, "", {}}, setup->getSpaceInformation(), search);
+            made->setProblemDefinition(setup->getProblemDefinition());
+            made->setup();
+            return made;
+        };
 
         for (const char *planner : {"rrtconnect", "rrt"})
         {
@@ -409,15 +433,21 @@ TEST(PoseNearestNeighbors, PlannersPlanTheSameTreeAsWithOmplsDefault)
                 }
             }
             EXPECT_GT(vertices[0], 50u) << what << ": the window should take a tree of some size to find";
+            EXPECT_TRUE(searchesWithPoseNeighbors(*makePlannerAndSetUp(planner, NeighborSearch::Poses))) << what;
+            EXPECT_FALSE(searchesWithPoseNeighbors(*makePlannerAndSetUp(planner, NeighborSearch::OmplDefault))) << what;
             EXPECT_EQ(vertices[0], vertices[1]) << what;
             EXPECT_EQ(paths[0], paths[1]) << what;
         }
         // PRM and PRM* find their roadmap neighbours with the structure too (their roadmaps depend
         // on the timing of PRM's second thread, so only the solution is asked for here).
+        // max_nearest_neighbors makes PRM's structure at once: it must still be the pose search.
+        EXPECT_TRUE(searchesWithPoseNeighbors(*makePlanner({"prm", "", {{"max_nearest_neighbors", "12"}}},
+                                                           setup->getSpaceInformation(), NeighborSearch::Poses)));
         for (const char *planner : {"prm", "prmstar"})
         {
             setup->clear();
             setup->setPlanner(makePlanner({planner, "", {}}, setup->getSpaceInformation(), NeighborSearch::Poses));
+            EXPECT_TRUE(searchesWithPoseNeighbors(*setup->getPlanner())) << planner;
             const auto level = ompl::msg::getLogLevel();
             ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
             // The roadmap planners grow their roadmap until the time is up (a path is found within

@@ -25,6 +25,11 @@ enum class NeighborSearch
     OmplDefault,
 };
 
+/// True when the planner finds its nearest neighbours with PoseNearestNeighbors: one made by
+/// makePlanner with NeighborSearch::Poses on SE(2) or SE(3) (rrtconnect and rrt once set up; prm
+/// and prmstar from the start).
+bool searchesWithPoseNeighbors(const ompl::base::Planner &planner);
+
 /// "poses" or "ompl"; throws std::invalid_argument naming both for anything else.
 NeighborSearch parseNeighborSearch(const std::string &name);
 

@@ -22,8 +22,8 @@ struct PoseCoordinates
     /// false when a value is not finite.
     bool finite = true;
     /// false when the rotation is not one the bound is sound for: a quaternion whose norm is off
-    /// 1 by more than 1e-9, a yaw outside [-pi, pi]. A query's rotation is then bounded by 0; an
-    /// element's is not bounded at all (PoseNearestNeighbors measures it on every search).
+    /// 1 by more than 1e-9, a yaw outside [-pi, pi]. PoseNearestNeighbors measures such an element
+    /// on every search, and such a query against every element.
     bool rotationBoundable = true;
 };
 
@@ -35,7 +35,8 @@ class PoseMetric
 {
 public:
     /// The metric of space when it is OMPL's SE2StateSpace or SE3StateSpace itself (not a class
-    /// derived from them, which may measure differently); nullopt for any other space.
+    /// derived from them, which may measure differently); nullopt for any other space. The
+    /// subspace weights are read now: a later setSubspaceWeight on the space is not seen.
     static std::optional<PoseMetric> of(const ompl::base::StateSpace &space);
 
     bool planar() const { return planar_; }
@@ -58,8 +59,10 @@ public:
             squared += g * g;
         }
         // Far enough by the translation alone, compared in squares (no root): a value just above
-        // `enough` is then still below the distance.
-        if (translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack))
+        // `enough` is then still below the distance. Only where the squares neither underflow nor
+        // overflow, and `enough` is positive (a bound of `enough` itself would not rule out).
+        if (enough > 1e-150 && enough < 1e150 &&
+            translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack))
             return enough * (1.0 + 0.1 * kSquaredComparisonSlack);
         const double translation = translationWeight_ * std::sqrt(squared);
         if (!p.rotationBoundable || translation >= enough)

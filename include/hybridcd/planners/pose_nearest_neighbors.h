@@ -225,7 +225,8 @@ private:
         }
         nodes_[n].items.push_back(index);
         nodes_[n].points.push_back(coordinates_[index].values);
-        if (nodes_[n].items.size() > kLeafCapacity)
+        // A leaf of identical poses cannot be split: it grows instead.
+        if (nodes_[n].items.size() > kLeafCapacity && widestDimension(nodes_[n]) >= 0)
         {
             std::vector<std::uint32_t> items = std::move(nodes_[n].items);
             nodes_[n].items.clear();
@@ -263,7 +264,9 @@ private:
             consider(index);
         if (nodes_.empty())
             return;
-        if (!query.finite)
+        // A query the boxes cannot bound is measured against every pose. A yaw outside
+        // [-pi, pi] is one: OMPL's wrapped difference may then even be negative.
+        if (!boundable(query))
         {
             for (std::uint32_t i = 0; i < elements_.size(); ++i)
                 if (boundable(coordinates_[i]))
