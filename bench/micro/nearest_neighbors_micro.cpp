@@ -56,27 +56,22 @@ void squeeze(ob::State *s, bool planar)
     }
 }
 
+// OMPL's SE(2) or SE(3) over the cube [-50, 50] of positions.
+template <typename Space>
+ob::StateSpacePtr poseSpace(unsigned dimensions)
+{
+    auto space = std::make_shared<Space>();
+    ob::RealVectorBounds bounds(dimensions);
+    bounds.setLow(-50);
+    bounds.setHigh(50);
+    space->setBounds(bounds);
+    return space;
+}
+
 std::unique_ptr<Data> makeData(bool planar, bool clustered, std::size_t count)
 {
     auto data = std::make_unique<Data>();
-    if (planar)
-    {
-        auto space = std::make_shared<ob::SE2StateSpace>();
-        ob::RealVectorBounds bounds(2);
-        bounds.setLow(-50);
-        bounds.setHigh(50);
-        space->setBounds(bounds);
-        data->space = space;
-    }
-    else
-    {
-        auto space = std::make_shared<ob::SE3StateSpace>();
-        ob::RealVectorBounds bounds(3);
-        bounds.setLow(-50);
-        bounds.setHigh(50);
-        space->setBounds(bounds);
-        data->space = space;
-    }
+    data->space = planar ? poseSpace<ob::SE2StateSpace>(2) : poseSpace<ob::SE3StateSpace>(3);
     ompl::RNG::setSeed(7);
     auto sampler = data->space->allocDefaultStateSampler();
     for (std::size_t i = 0; i < count; ++i)
