@@ -157,22 +157,21 @@ std::vector<CheckerSlot> configurationsOf(const CommandLine &cl, const CheckerCa
                     throw UsageError("the configuration " + label + " is given twice");
             slots.push_back({name, motion, options, label, nullptr, nullptr, nullptr});
         }
-    const CheckerEntry *fclEntry = checkers.find("fcl");
-    if (fclEntry)
-        for (CheckerSlot &s : slots)
-            s.omplAppSetup = s.label == labelOf(*fclEntry, {}, MotionCheck::Discrete, kinodynamic);
+    // OMPL.app's set-up, fcl+discrete, whether listed or added as the baseline.
+    const CheckerEntry *fcl = checkers.find("fcl");
+    const std::string omplAppLabel = fcl ? labelOf(*fcl, {}, MotionCheck::Discrete, kinodynamic) : std::string();
     if (baseline == "omplapp")
     {
-        const CheckerEntry *fcl = checkers.find("fcl");
         if (!fcl)
             throw UsageError("--baseline omplapp needs the fcl checker, which this build lacks; use --baseline none");
-        const std::string label = labelOf(*fcl, {}, MotionCheck::Discrete, kinodynamic);
         bool listed = false;
         for (const CheckerSlot &s : slots)
-            listed = listed || s.label == label;
+            listed = listed || s.label == omplAppLabel;
         if (!listed)
-            slots.push_back({"fcl", MotionCheck::Discrete, {}, label, nullptr, nullptr, nullptr, true});
+            slots.push_back({"fcl", MotionCheck::Discrete, {}, omplAppLabel, nullptr, nullptr, nullptr});
     }
+    for (CheckerSlot &s : slots)
+        s.omplAppSetup = fcl && s.label == omplAppLabel;
     return slots;
 }
 
@@ -357,10 +356,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     // make exactly the whole benchmark.
     const unsigned shardRuns = unsigned((totalRuns - shardIndex + shardCount - 1) / shardCount);
     const double timeLimit = cl.timeLimit("time", cfg.benchmark.timeLimit);
-    const std::string neighborName = cl.text("neighbors", "poses");
-    if (neighborName != "poses" && neighborName != "ompl")
-        throw UsageError("option --neighbors needs poses or ompl, got '" + neighborName + "'");
-    const NeighborSearch neighbors = parseNeighborSearch(neighborName);
+    const NeighborSearch neighbors = neighborSearchOf(cl);
     const double memoryLimit = cl.positiveNumber("memory", cfg.benchmark.memoryLimit);
     if (shardRuns == 0)
         throw UsageError("shard " + std::to_string(shardIndex) + "/" + std::to_string(shardCount) + " has no runs of " +
@@ -458,7 +454,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         benchmark.addExperimentParameter("goal_threshold", "REAL", shortNumber(controlSettings.goalThreshold));
     }
     benchmark.addExperimentParameter("shard_index", "INTEGER", std::to_string(shardIndex));
-    benchmark.addExperimentParameter("neighbors", "VARCHAR(16)", neighborName);
+    benchmark.addExperimentParameter("neighbors", "VARCHAR(16)", cl.text("neighbors", "poses"));
     benchmark.addExperimentParameter("shard_count", "INTEGER", std::to_string(shardCount));
     benchmark.addExperimentParameter("total_runs", "INTEGER", std::to_string(totalRuns));
     if (seeded)

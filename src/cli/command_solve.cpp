@@ -197,10 +197,7 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::string sampling = cl.text("sampler", "uniform");
     if (sampling != "uniform" && sampling != "retraction")
         throw UsageError("option --sampler needs uniform or retraction, got '" + sampling + "'");
-    const std::string neighborName = cl.text("neighbors", "poses");
-    if (neighborName != "poses" && neighborName != "ompl")
-        throw UsageError("option --neighbors needs poses or ompl, got '" + neighborName + "'");
-    const NeighborSearch neighbors = parseNeighborSearch(neighborName);
+    const NeighborSearch neighbors = neighborSearchOf(cl);
 
     ControlSettings controlSettings;
     controlSettings.motion = motion;

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 namespace hcd::cli
 {
@@ -21,6 +22,19 @@ std::string formatPose(const ConfigPose &p, bool planar)
     return s.str();
 }
 }  // namespace
+
+NeighborSearch neighborSearchOf(const CommandLine &cl)
+{
+    const std::string name = cl.text("neighbors", "poses");
+    try
+    {
+        return parseNeighborSearch(name);
+    }
+    catch (const std::invalid_argument &)
+    {
+        throw UsageError("option --neighbors needs poses or ompl, got '" + name + "'");
+    }
+}
 
 LoadedProblem loadProblemFor(const CommandLine &cl)
 {

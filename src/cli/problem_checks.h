@@ -7,12 +7,16 @@
 
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/planners/planner_catalogue.h"
 
 #include <string>
 #include <vector>
 
 namespace hcd::cli
 {
+/// --neighbors (poses, the default, or ompl); a UsageError for anything else.
+NeighborSearch neighborSearchOf(const CommandLine &cl);
+
 /// Loads the problem named on the command line with the mesh limits of --max-triangles, and prints
 /// the .cfg's warnings (unknown keys) on stderr; the run continues after a warning.
 LoadedProblem loadProblemFor(const CommandLine &cl);

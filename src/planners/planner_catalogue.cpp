@@ -82,7 +82,7 @@ Factory make()
 
 // T, or WithPoses (T searching its trees or roadmap with PoseNearestNeighbors) when asked for.
 template <typename T, typename WithPoses>
-Factory makeTree()
+Factory makeWithPoseSearch()
 {
     return [](const ompl::base::SpaceInformationPtr &si, NeighborSearch search) -> ompl::base::PlannerPtr {
         if (search == NeighborSearch::Poses)
@@ -224,8 +224,8 @@ const std::map<std::string, Factory> &catalogue()
         {"lbkpiece", make<og::LBKPIECE1>()},
         {"lbtrrt", make<og::LBTRRT>()},
         {"pdst", make<og::PDST>()},
-        {"prm", makeTree<og::PRM, PrmWithPoseNeighbors<og::PRM>>()},
-        {"prmstar", makeTree<og::PRMstar, PrmWithPoseNeighbors<og::PRMstar>>()},
+        {"prm", makeWithPoseSearch<og::PRM, PrmWithPoseNeighbors<og::PRM>>()},
+        {"prmstar", makeWithPoseSearch<og::PRMstar, PrmWithPoseNeighbors<og::PRMstar>>()},
         {"projest", make<og::ProjEST>()},
         {"prrt", make<og::pRRT>()},
         {"psbl", make<og::pSBL>()},
@@ -236,8 +236,8 @@ const std::map<std::string, Factory> &catalogue()
              return std::make_shared<og::QRRT>(levels, "QRRT");
          }},
         {"rlrt", make<og::RLRT>()},
-        {"rrt", makeTree<og::RRT, RRTWithPoseNeighbors>()},
-        {"rrtconnect", makeTree<og::RRTConnect, RRTConnectWithPoseNeighbors>()},
+        {"rrt", makeWithPoseSearch<og::RRT, RRTWithPoseNeighbors>()},
+        {"rrtconnect", makeWithPoseSearch<og::RRTConnect, RRTConnectWithPoseNeighbors>()},
         {"rrtsharp", make<og::RRTsharp>()},
         {"rrtstar", make<og::RRTstar>()},
         {"rrtxstatic", make<og::RRTXstatic>()},
