@@ -221,18 +221,21 @@ void ContinuousMotionValidator::setContactTolerance(double fraction, bool atMost
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
 {
+    const StateValidityChecker::Timing timing = validity_->timing();
     return finish(verdict(s1, s2), s1, s2, nullptr, nullptr);
 }
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                                             std::pair<ompl::base::State *, double> &lastValid) const
 {
+    const StateValidityChecker::Timing timing = validity_->timing();
     return finish(verdictThenBracket(s1, s2), s1, s2, lastValid.first, &lastValid.second);
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::checkMotionDetailed(const ompl::base::State *s1,
                                                                                  const ompl::base::State *s2) const
 {
+    const StateValidityChecker::Timing timing = validity_->timing();
     const Report report = verdictThenBracket(s1, s2);
     finish(report, s1, s2, nullptr, nullptr);
     return report;

@@ -34,6 +34,25 @@ auto StateValidityChecker::timed(const Query &query) const
     return result;
 }
 
+template <typename Query>
+auto StateValidityChecker::counted(const Query &query) const
+{
+    checks_.fetch_add(1, std::memory_order_relaxed);
+    return query();
+}
+
+StateValidityChecker::Timing::Timing(const StateValidityChecker &validity)
+    : validity_(validity),
+      start_(std::chrono::steady_clock::now())
+{
+}
+
+StateValidityChecker::Timing::~Timing()
+{
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_);
+    validity_.nanoseconds_.fetch_add(std::uint64_t(ns.count()), std::memory_order_relaxed);
+}
+
 bool StateValidityChecker::isValid(const ompl::base::State *state) const
 {
     return si_->satisfiesBounds(state) && collisionFree(state);
@@ -41,7 +60,9 @@ bool StateValidityChecker::isValid(const ompl::base::State *state) const
 
 bool StateValidityChecker::collisionFree(const ompl::base::State *state) const
 {
-    return !poseCollides(poseOfState(state, planar_), *contexts_.borrow());
+    const RigidTransform pose = poseOfState(state, planar_);
+    const QueryContextPool::Lease context = contexts_.borrow();
+    return !timed([&] { return checker_->collides(pose, *context); });
 }
 
 double StateValidityChecker::clearance(const ompl::base::State *state) const
@@ -89,13 +110,13 @@ bool StateValidityChecker::pushedOut(const ompl::base::State *state, ompl::base:
 
 bool StateValidityChecker::poseCollides(const RigidTransform &worldFromRobot, QueryContext &context) const
 {
-    return timed([&] { return checker_->collides(worldFromRobot, context); });
+    return counted([&] { return checker_->collides(worldFromRobot, context); });
 }
 
 bool StateValidityChecker::poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack,
                                                    double radialSlack, double robotRadius, QueryContext &context) const
 {
-    return timed([&] {
+    return counted([&] {
         return checker_->withinSweptDistance(worldFromRobot, translationSlack, radialSlack, robotRadius, context);
     });
 }
@@ -103,14 +124,14 @@ bool StateValidityChecker::poseWithinSweptDistance(const RigidTransform &worldFr
 bool StateValidityChecker::poseSweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack,
                                                      double radialSlack) const
 {
-    return timed([&] { return checker_->sweptFreeByFirstLayer(worldFromRobot, translationSlack, radialSlack); });
+    return counted([&] { return checker_->sweptFreeByFirstLayer(worldFromRobot, translationSlack, radialSlack); });
 }
 
 bool StateValidityChecker::poseListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack,
                                                   double radialSlack, std::size_t limit,
                                                   std::vector<TrianglePair> &near, QueryContext &context) const
 {
-    return timed([&] {
+    return counted([&] {
         return checker_->listSweptNearPairs(worldFromRobot, translationSlack, radialSlack, limit, near, context);
     });
 }
@@ -119,7 +140,7 @@ bool StateValidityChecker::poseSweptNearPairsAmong(const RigidTransform &worldFr
                                                    double radialSlack, const std::vector<TrianglePair> &pairs,
                                                    std::vector<TrianglePair> &near, QueryContext &context) const
 {
-    return timed([&] {
+    return counted([&] {
         return checker_->sweptNearPairsAmong(worldFromRobot, translationSlack, radialSlack, pairs, near, context);
     });
 }
@@ -127,7 +148,7 @@ bool StateValidityChecker::poseSweptNearPairsAmong(const RigidTransform &worldFr
 bool StateValidityChecker::poseWithinDistance(const RigidTransform &worldFromRobot, double delta,
                                               QueryContext &context) const
 {
-    return timed([&] { return checker_->withinDistance(worldFromRobot, delta, context); });
+    return counted([&] { return checker_->withinDistance(worldFromRobot, delta, context); });
 }
 
 void StateValidityChecker::resetCounters()

@@ -56,6 +56,7 @@ void VehiclePropagator::propagate(const ompl::base::State *state, const ompl::co
     finishPropagation(model_, q);
     if (sweep_ && duration > 0.0)
     {
+        const StateValidityChecker::Timing timing = sweep_->timing();
         ompl::base::State *scratch = si_->allocState();
         const bool free = certify(q0, u, duration, 0, scratch, *sweep_->contexts().borrow());
         si_->freeState(scratch);

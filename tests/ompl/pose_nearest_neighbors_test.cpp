@@ -194,6 +194,49 @@ TEST(PoseMetric, OnlyOmplsOwnPoseSpaces)
     EXPECT_FALSE(PoseMetric::of(two));
 }
 
+// The bounds a leaf's poses get side by side: never above OMPL's distance, and within rounding of
+// the box bound over the pose alone, for random poses, near turns and yaws at the wrap.
+TEST(PoseMetric, PointBoundsBoundOmplsDistance)
+{
+    test::TestRandom rng(61);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (const bool planar : {false, true})
+    {
+        const ob::StateSpacePtr space = planar ? ob::StateSpacePtr(se2Space(50)) : ob::StateSpacePtr(se3Space(50));
+        const PoseMetric metric = *PoseMetric::of(*space);
+        std::vector<StatePtr> states;
+        for (int i = 0; i < 400; ++i)
+        {
+            states.push_back(space->allocState());
+            if (planar)
+                setPlanar(states.back(), 100 * unit(rng) - 50, 100 * unit(rng) - 50,
+                          i % 5 == 0 ? (i % 2 ? kPi - 1e-12 : -kPi) : 2 * kPi * unit(rng) - kPi);
+            else if (i % 4 == 0 && i > 0)
+                setTurned(states.back(), states[i - 1], std::pow(10.0, -9 + 8 * unit(rng)));
+            else
+                setRandomSpatial(states.back(), 50 * unit(rng), rng);
+        }
+        std::vector<std::array<double, 7>> points;
+        for (StatePtr s : states)
+            points.push_back(metric.coordinates(s).values);
+        std::vector<double> bounds(points.size());
+        for (StatePtr query : states)
+        {
+            const PoseCoordinates q = metric.coordinates(query);
+            ASSERT_TRUE(q.rotationBoundable);
+            metric.pointLowerBounds(q, points.data(), points.size(), bounds.data());
+            for (std::size_t i = 0; i < points.size(); ++i)
+            {
+                EXPECT_LE(bounds[i], space->distance(query, states[i])) << "pose " << i;
+                const double box = metric.lowerBound(q, points[i].data(), points[i].data());
+                EXPECT_NEAR(bounds[i], box, 1e-12 * (1.0 + box)) << "pose " << i;
+            }
+        }
+        for (StatePtr s : states)
+            space->freeState(s);
+    }
+}
+
 TEST(PoseNearestNeighbors, SpatialPosesMatchLinearSearch)
 {
     const std::pair<double, double> weights[] = {{1.0, 1.0}, {1.0, 0.05}, {1.0, 20.0},

@@ -9,6 +9,7 @@
 #include <ompl/base/StateValidityChecker.h>
 
 #include <atomic>
+#include <chrono>
 #include <memory>
 
 namespace hcd
@@ -47,16 +48,17 @@ public:
     /// state was found. A collision-free `state` is copied as it is.
     bool pushedOut(const ompl::base::State *state, ompl::base::State *out) const;
 
-    /// Counted and timed forms of the checker's queries for a pose, for the motion validator,
-    /// made with the caller's context (one per thread: see contexts()).
+    /// Counted forms of the checker's queries for a pose, for the motion validator, made with the
+    /// caller's context (one per thread: see contexts()). They are not timed one by one (a clock
+    /// read costs as much as a grid's answer): the caller times a run of them with timing().
     bool poseCollides(const RigidTransform &worldFromRobot, QueryContext &context) const;
     bool poseWithinDistance(const RigidTransform &worldFromRobot, double delta, QueryContext &context) const;
     bool poseWithinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                  double robotRadius, QueryContext &context) const;
-    /// CollisionChecker::sweptFreeByFirstLayer, counted and timed.
+    /// CollisionChecker::sweptFreeByFirstLayer, counted.
     bool poseSweptFreeByFirstLayer(const RigidTransform &worldFromRobot, double translationSlack,
                                    double radialSlack) const;
-    /// CollisionChecker::listSweptNearPairs and sweptNearPairsAmong, counted and timed.
+    /// CollisionChecker::listSweptNearPairs and sweptNearPairsAmong, counted.
     bool poseListSweptNearPairs(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                                 std::size_t limit, std::vector<TrianglePair> &near, QueryContext &context) const;
     bool poseSweptNearPairsAmong(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
@@ -70,15 +72,33 @@ public:
     const CollisionChecker &checker() const { return *checker_; }
     bool planar() const { return planar_; }
 
+    /// Adds the wall time from its construction to its destruction to checkSeconds(): a motion
+    /// validator holds one over each motion it checks with the pose queries above.
+    class Timing
+    {
+    public:
+        explicit Timing(const StateValidityChecker &validity);
+        ~Timing();
+        Timing(const Timing &) = delete;
+        Timing &operator=(const Timing &) = delete;
+
+    private:
+        const StateValidityChecker &validity_;
+        std::chrono::steady_clock::time_point start_;
+    };
+    Timing timing() const { return Timing(*this); }
+
     /// Number of collision queries answered so far.
     std::uint64_t checkCount() const { return checks_.load(std::memory_order_relaxed); }
-    /// Wall time spent inside collision queries, in seconds.
+    /// Wall time spent inside collision queries (and motion checks timed with timing()), in seconds.
     double checkSeconds() const { return 1e-9 * double(nanoseconds_.load(std::memory_order_relaxed)); }
     void resetCounters();
 
 private:
     template <typename Query>
     auto timed(const Query &query) const;
+    template <typename Query>
+    auto counted(const Query &query) const;
 
     std::shared_ptr<const CollisionChecker> checker_;
     CollisionScene scene_;

@@ -91,12 +91,41 @@ public:
         }
         return (translation + rotationWeight_ * std::max(angle, 0.0)) * (1.0 - kWeightedSumSlack);
     }
-    /// True when the pose whose coordinates are `point` is certainly further than `bar` from p,
-    /// by the same bound as lowerBound() over the box [point, point]; p's rotation boundable or
-    /// not, point's boundable.
-    bool certainlyBeyond(const PoseCoordinates &p, const double *point, double bar) const
+    /// lowerBound(p, point, point) for each of `count` points (without its early return, which
+    /// only changes values above `enough`), into bounds[0, count). p's rotation must be
+    /// boundable. Branch-free, so that a leaf's poses are bounded side by side.
+    void pointLowerBounds(const PoseCoordinates &p, const std::array<double, 7> *points, std::size_t count,
+                          double *bounds) const
     {
-        return lowerBound(p, point, point, bar) > bar;
+        const auto &v = p.values;
+        if (planar_)
+        {
+            for (std::size_t k = 0; k < count; ++k)
+            {
+                const double *q = points[k].data();
+                const double dx = v[0] - q[0], dy = v[1] - q[1];
+                const double yaw = std::fabs(v[2] - q[2]);
+                const double wrapped = yaw > kPi ? 2.0 * kPi - yaw : yaw;
+                const double angle = std::max(wrapped - kWrappedYawSlack, 0.0);
+                bounds[k] = (translationWeight_ * std::sqrt(dx * dx + dy * dy) + rotationWeight_ * angle) *
+                            (1.0 - kWeightedSumSlack);
+            }
+            return;
+        }
+        for (std::size_t k = 0; k < count; ++k)
+        {
+            const double *q = points[k].data();
+            const double dx = v[0] - q[0], dy = v[1] - q[1], dz = v[2] - q[2];
+            double plus = 0.0, minus = 0.0;
+            for (int i = 3; i < 7; ++i)
+            {
+                plus += (v[i] - q[i]) * (v[i] - q[i]);
+                minus += (v[i] + q[i]) * (v[i] + q[i]);
+            }
+            const double angle = std::max(std::sqrt(std::min(plus, minus)) - kChordSlack, 0.0);
+            bounds[k] = (translationWeight_ * std::sqrt(dx * dx + dy * dy + dz * dz) + rotationWeight_ * angle) *
+                        (1.0 - kWeightedSumSlack);
+        }
     }
 
     /// dimensions() weights that make a coordinate's spread comparable with the others' when

@@ -291,9 +291,15 @@ private:
             {
                 // A pose's own coordinates bound its distance as a box does: measured only if
                 // the bound leaves it a chance (the bound costs a fraction of OMPL's distance).
-                for (std::size_t i = 0; i < node.items.size(); ++i)
-                    if (!metric_.certainlyBeyond(query, node.points[i].data(), bar()))
-                        consider(node.items[i]);
+                double pointBounds[kLeafCapacity];
+                for (std::size_t first = 0; first < node.items.size(); first += kLeafCapacity)
+                {
+                    const std::size_t count = std::min(kLeafCapacity, node.items.size() - first);
+                    metric_.pointLowerBounds(query, node.points.data() + first, count, pointBounds);
+                    for (std::size_t i = 0; i < count; ++i)
+                        if (!(pointBounds[i] > bar()))
+                            consider(node.items[first + i]);
+                }
                 continue;
             }
             const double first = boundOf(nodes_[node.firstChild]);
