@@ -57,6 +57,7 @@ std::optional<std::size_t> checkRobotMotions(const LoadedProblem &problem,
     ContinuousMotionValidator *validator = planning.continuousValidator.get();
     validator->setContactTolerance(contactTolerance);
     validator->setApplyBounds(false);  // as in `check`, only collisions decide
+    validator->setStartChecked(true);  // a listed motion may start in collision: said at once
     ompl::base::State *a = si->allocState(), *b = si->allocState(), *last = si->allocState();
     MotionVerdicts verdicts(verdictOnly);
     const auto start = std::chrono::steady_clock::now();

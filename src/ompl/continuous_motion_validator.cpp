@@ -486,7 +486,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         return report;
     };
     const RigidTransform p1 = poseOfState(s1, planar);
-    if (validity_->poseCollides(p1, *context))
+    if (checkStart_ && validity_->poseCollides(p1, *context))
         return contact(0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact

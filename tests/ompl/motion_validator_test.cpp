@@ -470,6 +470,106 @@ TEST(MotionValidator, VerdictAgreesWithBracketingOnProjectProblems)
     expectVerdictMatchesBracketing(test::sourcePath("problems/corridor_2d.cfg"), test::cases(150));
 }
 
+// Motions from a colliding first state, which OMPL's planners never ask about: the validator does
+// not test s1 by default (checkMotion's contract), yet never accepts such a motion, with or
+// without the test and with or without a last valid state asked for.
+void expectNoMotionFromACollidingStartAccepted(const LoadedProblem &problem, const std::string &checker,
+                                               const std::vector<std::pair<ob::State *, ob::State *>> &motions,
+                                               const ob::SpaceInformationPtr &si, const std::string &label)
+{
+    auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    std::pair<ob::State *, double> last{si->allocState(), 0.0};
+    for (std::size_t i = 0; i < motions.size(); ++i)
+    {
+        const auto [a, b] = motions[i];
+        ASSERT_TRUE(reference->collides(poseOfState(a, problem.config.planar))) << label << " motion " << i;
+        for (const bool startChecked : {false, true})
+        {
+            validator.setStartChecked(startChecked);
+            EXPECT_FALSE(validator.checkMotion(a, b)) << label << " " << checker << " motion " << i;
+            EXPECT_FALSE(validator.checkMotion(a, b, last)) << label << " " << checker << " motion " << i;
+            EXPECT_FALSE(validator.checkMotionDetailed(a, b).free) << label << " " << checker << " motion " << i;
+        }
+        validator.setStartChecked(false);
+    }
+    si->freeState(last.first);
+}
+
+TEST(MotionValidator, NoMotionFromACollidingStartIsAccepted)
+{
+    // Adversarial starts: touching a thin wall and moving away from it, sliding along it, inside a
+    // closed box (solid semantics) staying inside or leaving it.
+    TriangleMesh scene = thinWall();
+    const TriangleMesh closed = test::boxMesh(Vec3(10, -5, -5), Vec3(20, 5, 5));
+    const std::uint32_t base = std::uint32_t(scene.vertices.size());
+    scene.vertices.insert(scene.vertices.end(), closed.vertices.begin(), closed.vertices.end());
+    for (const auto &t : closed.triangles)
+        scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    const LoadedProblem problem = makeProblem(test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)), scene);
+    for (const std::string checker : {"auto", "obb"})
+    {
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker(checker, problem.scene));
+        planning.setup->setup();
+        const auto si = planning.setup->getSpaceInformation();
+        std::vector<std::pair<ob::State *, ob::State *>> motions;
+        const auto motion = [&](const Vec3 &from, double fromYaw, const Vec3 &to, double toYaw) {
+            motions.push_back({si->allocState(), si->allocState()});
+            setPose(motions.back().first, from, fromYaw);
+            setPose(motions.back().second, to, toYaw);
+        };
+        motion(Vec3(-0.5, 0, 0), 0.0, Vec3(-5, 0, 0), 0.0);    // face on the wall, moving off
+        motion(Vec3(-0.5, 0, 0), 0.0, Vec3(-0.5, 3, 0), 0.0);  // face on the wall, sliding
+        motion(Vec3(-0.5, 0, 0), 0.0, Vec3(-3, 1, 0), 1.0);    // face on the wall, turning away
+        motion(Vec3(0.2, 0, 0), 0.0, Vec3(-4, 0, 0), 0.0);     // through the wall, moving off
+        motion(Vec3(15, 0, 0), 0.0, Vec3(16, 1, 0), 0.5);      // inside the closed box, staying
+        motion(Vec3(15, 0, 0), 0.0, Vec3(25, 0, 0), 0.0);      // inside the closed box, leaving
+        motion(Vec3(10, 0, 0), 0.0, Vec3(7, 0, 0), 0.0);       // across the box's wall, leaving
+        expectNoMotionFromACollidingStartAccepted(problem, checker, motions, si, "in-memory");
+        for (auto &[a, b] : motions)
+        {
+            si->freeState(a);
+            si->freeState(b);
+        }
+    }
+}
+
+// Colliding starts drawn uniformly, ends as a planner would pick them (valid or not).
+void expectNoRandomMotionFromACollidingStartAccepted(const std::string &cfg, int count)
+{
+    const LoadedProblem problem = loadProblem(cfg);
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("auto", problem.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    auto sampler = si->allocStateSampler();
+    std::vector<std::pair<ob::State *, ob::State *>> motions;
+    for (int i = 0; i < count; ++i)
+    {
+        ob::State *a = si->allocState(), *b = si->allocState();
+        do
+            sampler->sampleUniform(a);
+        while (!reference->collides(poseOfState(a, problem.config.planar)));
+        sampler->sampleUniformNear(b, a, 0.2 * si->getMaximumExtent());
+        si->enforceBounds(b);
+        motions.push_back({a, b});
+    }
+    expectNoMotionFromACollidingStartAccepted(problem, "auto", motions, si, cfg);
+    for (auto &[a, b] : motions)
+    {
+        si->freeState(a);
+        si->freeState(b);
+    }
+}
+
+TEST(MotionValidator, NoMotionFromACollidingStartIsAcceptedOnOmplAppProblems)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cubicles, "3D/cubicles.cfg");
+    expectNoRandomMotionFromACollidingStartAccepted(cubicles, test::cases(40));
+    HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
+    expectNoRandomMotionFromACollidingStartAccepted(maze, test::cases(40));
+}
+
 TEST(Clearance, MatchesBruteForceDistanceOnFreePoses)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");

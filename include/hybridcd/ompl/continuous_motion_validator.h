@@ -95,6 +95,13 @@ public:
         translations_ = std::move(finder);
     }
 
+    /// Whether the motion's first state is itself tested for collision (default false). OMPL's
+    /// planners pass only valid first states (checkMotion's contract; OMPL's discrete validator does
+    /// not test s1 either), and a planner's s1 is a state it has just tested. A motion from a
+    /// colliding s1 is never accepted either way: certification covers the whole motion, s1
+    /// included; untested, it is refused after bisecting down to s1 rather than at once.
+    void setStartChecked(bool check) { checkStart_ = check; }
+
     /// Whether s2 must satisfy the state-space bounds (default true, as OMPL's validators do).
     void setApplyBounds(bool apply) { applyBounds_ = apply; }
 
@@ -139,6 +146,7 @@ private:
     double minimumClearance_;
     double contactTolerance_ = 1e-6;
     bool toleranceIsSegment_ = false;
+    bool checkStart_ = false;
     bool applyBounds_ = true;
     bool useFronts_ = true;
     mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0}, translationBrackets_{0}, listedFronts_{0},
