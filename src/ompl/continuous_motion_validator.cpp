@@ -222,32 +222,33 @@ void ContinuousMotionValidator::setContactTolerance(double fraction, bool atMost
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
 {
     const StateValidityChecker::Timing timing = validity_->timing();
-    return finish(verdict(s1, s2), s1, s2, nullptr, nullptr);
+    return finish(verdict(s1, s2, checkStart_), s1, s2, nullptr, nullptr);
 }
 
 bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                                             std::pair<ompl::base::State *, double> &lastValid) const
 {
     const StateValidityChecker::Timing timing = validity_->timing();
-    return finish(verdictThenBracket(s1, s2), s1, s2, lastValid.first, &lastValid.second);
+    return finish(verdictThenBracket(s1, s2, checkStart_), s1, s2, lastValid.first, &lastValid.second);
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::checkMotionDetailed(const ompl::base::State *s1,
                                                                                  const ompl::base::State *s2) const
 {
     const StateValidityChecker::Timing timing = validity_->timing();
-    const Report report = verdictThenBracket(s1, s2);
+    const Report report = verdictThenBracket(s1, s2, /*testStart=*/true);
     finish(report, s1, s2, nullptr, nullptr);
     return report;
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::verdictThenBracket(const ompl::base::State *s1,
-                                                                                const ompl::base::State *s2) const
+                                                                                const ompl::base::State *s2,
+                                                                                bool testStart) const
 {
     // Most motions a planner asks about are free, and proving that costs the same whether or not
     // the first contact is wanted: the verdict first, and the first contact searched for only on a
     // motion the verdict did not prove free.
-    const Report quick = verdict(s1, s2);
+    const Report quick = verdict(s1, s2, testStart);
     if (quick.free)
         return quick;
     if (translations_ && quick.contactFound && quick.contactAt > 0.0)
@@ -340,6 +341,8 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
         report.blockedAt = at;
         return report;
     };
+    // s1 is tested even when the verdict took it as valid: it anchors the certified prefix (surfaces
+    // kept apart from a free state keep the robot free), and the last valid state comes from it.
     const RigidTransform p1 = poseOfState(s1, planar);
     if (validity_->poseCollides(p1, *context))
         return contact(0.0, 0.0);
@@ -464,7 +467,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl::base::State *s1,
-                                                                     const ompl::base::State *s2) const
+                                                                     const ompl::base::State *s2, bool testStart) const
 {
     ompl::base::SpaceInformation *si = si_;
     const ompl::base::StateSpacePtr &space = si->getStateSpace();
@@ -486,7 +489,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         return report;
     };
     const RigidTransform p1 = poseOfState(s1, planar);
-    if (checkStart_ && validity_->poseCollides(p1, *context))
+    if (testStart && validity_->poseCollides(p1, *context))
         return contact(0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact

@@ -55,6 +55,8 @@ public:
     /// On failure, lastValid.first (if not null) receives a collision-free state on the motion and
     /// lastValid.second its fraction in [0, 1): [0, lastValid.second] is proven free, and the motion
     /// is blocked (a contact or a near contact, see Report) within the contact tolerance after it.
+    /// The first contact's search tests s1 itself whatever setStartChecked says: it anchors the
+    /// proven-free prefix.
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
 
@@ -95,7 +97,8 @@ public:
         translations_ = std::move(finder);
     }
 
-    /// Whether the motion's first state is itself tested for collision (default false). OMPL's
+    /// Whether checkMotion tests the motion's first state itself (default false;
+    /// checkMotionDetailed always does). OMPL's
     /// planners pass only valid first states (checkMotion's contract; OMPL's discrete validator does
     /// not test s1 either), and a planner's s1 is a state it has just tested. A motion from a
     /// colliding s1 is never accepted either way: certification covers the whole motion, s1
@@ -127,16 +130,17 @@ private:
     /// The first-contact search (checkMotionDetailed and checkMotion with a last valid state).
     /// `knownContact`, when at most 1, is a fraction where the robot is known to collide: the
     /// search is then confined to the motion before it.
+    /// s1 is always tested here.
     Report certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact = 2.0) const;
     /// The verdict alone (no bracket): raked collision checks, then certification of what is left.
-    Report verdict(const ompl::base::State *s1, const ompl::base::State *s2) const;
+    Report verdict(const ompl::base::State *s1, const ompl::base::State *s2, bool testStart) const;
     /// The bracket of a blocked pure translation from its exact first contact, searched for on
     /// [0, knownContact] (a fraction where the robot collides); nullopt when the motion rotates or
     /// the answer cannot be confirmed (certify() then decides).
     std::optional<Report> bracketTranslation(const ompl::base::State *s1, const ompl::base::State *s2,
                                              double knownContact) const;
     /// verdict(), then certify() when the motion was not proven free.
-    Report verdictThenBracket(const ompl::base::State *s1, const ompl::base::State *s2) const;
+    Report verdictThenBracket(const ompl::base::State *s1, const ompl::base::State *s2, bool testStart) const;
     bool finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
                 ompl::base::State *lastValidState, double *lastValidFraction) const;
 
