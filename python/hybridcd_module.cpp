@@ -192,6 +192,7 @@ public:
         validator_ = planning_.continuousValidator;
         validator_->setContactTolerance(contactTolerance);
         validator_->setApplyBounds(false);
+        validator_->setStartChecked(true);  // a listed motion may start in collision
     }
 
     const std::shared_ptr<const Scene> &scene() const { return scene_; }

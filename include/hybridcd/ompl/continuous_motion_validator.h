@@ -55,8 +55,9 @@ public:
     /// On failure, lastValid.first (if not null) receives a collision-free state on the motion and
     /// lastValid.second its fraction in [0, 1): [0, lastValid.second] is proven free, and the motion
     /// is blocked (a contact or a near contact, see Report) within the contact tolerance after it.
-    /// The first contact's search tests s1 itself whatever setStartChecked says: it anchors the
-    /// proven-free prefix.
+    /// The first contact's search tests s1 itself whatever setStartChecked says (the exact first
+    /// contact of a translation tests the last valid state instead): it anchors the proven-free
+    /// prefix.
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
 
