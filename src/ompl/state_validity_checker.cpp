@@ -26,12 +26,9 @@ StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr
 template <typename Query>
 auto StateValidityChecker::timed(const Query &query) const
 {
-    const auto start = std::chrono::steady_clock::now();
-    const auto result = query();
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start);
-    checks_.fetch_add(1, std::memory_order_relaxed);
-    nanoseconds_.fetch_add(std::uint64_t(ns.count()), std::memory_order_relaxed);
-    return result;
+    // One query counted, and timed by a Timing scope of its own.
+    const Timing timing(*this);
+    return counted(query);
 }
 
 template <typename Query>
