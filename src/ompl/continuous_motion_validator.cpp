@@ -80,6 +80,11 @@ struct ScratchState
 // on average, alpha-1.5 level; 8 segments measured alike on Maze_planar and worse on alpha-1.5.
 constexpr unsigned kCertifyStartSegments = 4;
 
+// A known contact is narrowed by collision checks to within this fraction of the bracket's
+// tolerance after a free state before the prefix is certified. Measured with the same motions
+// (bench/README.md, section 3): a half and a quarter alike, a whole tolerance a little dearer.
+constexpr double kNarrowing = 0.5;
+
 // Near-pair fronts: once an interval's swept query fails, every triangle pair that may come within
 // its slack is listed (at most kFrontLimit of them, or none); its sub-intervals then test only those
 // pairs, since every other pair is proved apart over the whole interval. Measured with
@@ -360,17 +365,21 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     // contact it meets, so the pass mostly repeated those checks (lastValid 10% cheaper on Maze,
     // level elsewhere within the noise; bench/README.md section 3).
     const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
-    double end = 1.0;  // the search for the first contact stops here
+    double end = 1.0;        // the search for the first contact stops here
+    double freeState = 0.0;  // a state known free (tested), before `end`
     bool contactKnown = knownContact <= 1.0;
     if (contactKnown)
         end = knownContact;  // only samples before it can hold an earlier contact
     for (unsigned k = 1; !contactKnown && k <= n && double(k) / n < end; ++k)
+    {
         if (validity_->poseCollides(poseAt(double(k) / n), *context))
         {
             end = double(k) / n;
             contactKnown = true;
             break;
         }
+        freeState = double(k) / n;
+    }
 
     const double translationRate = rates.translation, angleRate = rates.angle;
     const double speed = translationRate + robotRadius_ * angleRate;
@@ -378,22 +387,52 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
     // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
     IntervalChecks checks(*validity_, robotRadius_, *context, useFronts_, listedFronts_, wideSweeps_);
+    // The bracket to reach: the tolerance, or (for planners) one of OMPL's segments if that is
+    // coarser, which is what OMPL's discrete validator offers as a last valid state.
+    const double tolerance = toleranceIsSegment_ ? std::max(contactTolerance_, 1.0 / n) : contactTolerance_;
+    std::size_t queries = 0;
+    // With a contact known, collision checks alone first bring it to within kNarrowing of the
+    // tolerance after a free state (bisection), and certification then stops a whole tolerance
+    // before it: a prefix that ends that far from the obstacle is certified by far fewer
+    // intervals than one that runs up to the contact (bench/README.md, section 3, "lastValid:
+    // the contact narrowed first"). Returns the colliding state nearest the free one.
+    const auto narrow = [&](double freeAt, double collidingAt) {
+        while (collidingAt - freeAt > kNarrowing * tolerance && queries < kMaxRefinementQueries)
+        {
+            const double mid = 0.5 * (freeAt + collidingAt);
+            if (!(freeAt < mid && mid < collidingAt))
+                break;
+            ++queries;
+            (validity_->poseCollides(poseAt(mid), *context) ? collidingAt : freeAt) = mid;
+        }
+        return collidingAt;
+    };
+    // Certification of [from, contact - tolerance] is all a bracket on `contact` needs.
+    const auto certifyBefore = [&](double from, double contact) {
+        double to = contact - tolerance;
+        while (contact - to > tolerance)  // rounding: the bracket must hold the tolerance
+            to = std::nextafter(to, contact);
+        return std::max(from, to);
+    };
+    double certified = 0.0, contactAt = 2.0, nearContactAt = 2.0;
+    double target = end;  // the prefix to certify
+    if (contactKnown)
+    {
+        contactAt = end = narrow(freeState, end);
+        target = certifyBefore(0.0, contactAt);
+    }
     // Start from groups of kCertifyStartSegments of OMPL's segments rather than [0, 1]: short
     // intervals need small clearances, which the proximity query settles quickly. The earliest
     // interval is processed first, so that [0, certified] is a proven-free prefix.
     std::vector<MotionInterval> pending;
-    const unsigned segments = std::max(1u, unsigned(std::ceil(end * n / kCertifyStartSegments - 1e-9)));
-    for (unsigned i = 1; i <= segments; ++i)
+    const unsigned segments = std::max(1u, unsigned(std::ceil(target * n / kCertifyStartSegments - 1e-9)));
+    for (unsigned i = 1; i <= segments && target > 0.0; ++i)
     {
         const unsigned k = segments + 1 - i;
-        pending.push_back({end * double(k - 1) / segments, end * double(k) / segments});
+        // The last ends at `target` itself (target * k / k may round away from it).
+        pending.push_back({target * double(k - 1) / segments, k == segments ? target : target * double(k) / segments});
     }
-    double certified = 0.0, contactAt = contactKnown ? end : 2.0, nearContactAt = 2.0;
-    std::size_t queries = 0;
     bool refused = false;
-    // The bracket to reach: the tolerance, or (for planners) one of OMPL's segments if that is
-    // coarser, which is what OMPL's discrete validator offers as a last valid state.
-    const double tolerance = toleranceIsSegment_ ? std::max(contactTolerance_, 1.0 / n) : contactTolerance_;
     while (!pending.empty() && !(contactAt <= 1.0 && contactAt - certified <= tolerance))
     {
         const MotionInterval iv = pending.back();
@@ -416,12 +455,13 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
         }
         if (outcome.colliding)
         {
-            contactAt = mid;
+            // An earlier contact: narrowed like the first, between the free prefix and it.
+            contactAt = narrow(certified, mid);
             if (contactAt - certified <= tolerance)
                 break;
             // The interval's front covers [certified, contactAt] (intervals are taken in order).
             pending.clear();
-            pending.push_back({certified, contactAt, outcome.childFront});
+            pending.push_back({certified, certifyBefore(certified, contactAt), outcome.childFront});
             continue;
         }
         // Neither certified nor colliding: some robot point is within its reach of the environment.

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 using namespace hcd;
 namespace ob = ompl::base;
@@ -260,15 +261,22 @@ TEST(MotionValidator, RefusesEndsNoBoundHoldsFor)
     }
 }
 
-TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
+namespace
 {
-    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
+// Random motions on an OMPL.app problem through checkMotionDetailed: a proven-free prefix that
+// brute force finds free, and every motion that is not free blocked within the bracket after it
+// (`tolerance`, or with `perSegment` the coarser of it and one of OMPL's validity segments, as
+// the planning set-up brackets), by a contact or a near contact measured exactly.
+void expectFirstContactsBracketed(const std::string &cfg, const std::string &checker, double tolerance, bool perSegment,
+                                  double reach)
+{
     const LoadedProblem problem = loadProblem(cfg);
-    PlanningProblem planning = makePlanningProblem(problem, makeChecker("obb", problem.scene));
+    const bool planar = problem.config.planar;
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker(checker, problem.scene));
     planning.setup->setup();
     const auto si = planning.setup->getSpaceInformation();
     auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
-    validator.setContactTolerance(1e-6);
+    validator.setContactTolerance(tolerance, perSegment);
     const auto reference = makeChecker("bruteforce", problem.scene);
     auto sampler = si->allocStateSampler();
     ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();
@@ -278,8 +286,7 @@ TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
         sampler->sampleUniform(a);
         if (!si->isValid(a))
             continue;
-        // Short motions (a tenth of the space) so that both outcomes are common.
-        sampler->sampleUniformNear(b, a, 0.1 * si->getMaximumExtent());
+        sampler->sampleUniformNear(b, a, reach * si->getMaximumExtent());
         si->enforceBounds(b);
         const auto report = validator.checkMotionDetailed(a, b);
         // Never later than the true contact: brute force finds nothing on [0, lastFree].
@@ -287,7 +294,7 @@ TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
         for (int k = 0; k <= steps; ++k)
         {
             si->getStateSpace()->interpolate(a, b, report.lastFree * k / steps, s);
-            ASSERT_FALSE(reference->collides(poseOfState(s, false)));
+            ASSERT_FALSE(reference->collides(poseOfState(s, planar)));
         }
         if (report.free)
         {
@@ -295,13 +302,15 @@ TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
             continue;
         }
         ++colliding;
-        // The promise: blocked within the tolerance after the proven-free prefix, by a contact or
-        // a near contact (not farther than the minimum clearance, measured exactly here).
+        // The promise: blocked within the bracket after the proven-free prefix, by a contact or a
+        // near contact (not farther than the minimum clearance, measured exactly here).
+        const unsigned segments = std::max(1u, si->getStateSpace()->validSegmentCount(a, b));
+        const double bracket = perSegment ? std::max(tolerance, 1.0 / segments) : tolerance;
         ASSERT_TRUE(report.blocked) << "no bracket for a blocked motion";
         EXPECT_GT(report.blockedAt, report.lastFree);
-        EXPECT_LE(report.blockedAt - report.lastFree, 1e-6);
+        EXPECT_LE(report.blockedAt - report.lastFree, bracket);
         si->getStateSpace()->interpolate(a, b, report.blockedAt, s);
-        const RigidTransform blockedPose = poseOfState(s, false);
+        const RigidTransform blockedPose = poseOfState(s, planar);
         if (report.contactFound && report.contactAt == report.blockedAt)
             EXPECT_TRUE(reference->collides(blockedPose));
         else
@@ -313,7 +322,7 @@ TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
         {
             EXPECT_GE(report.contactAt, report.blockedAt);
             si->getStateSpace()->interpolate(a, b, report.contactAt, s);
-            EXPECT_TRUE(reference->collides(poseOfState(s, false)));
+            EXPECT_TRUE(reference->collides(poseOfState(s, planar)));
         }
     }
     EXPECT_GE(free, 20);
@@ -322,6 +331,25 @@ TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
     si->freeState(a);
     si->freeState(b);
     si->freeState(s);
+}
+}  // namespace
+
+TEST(MotionValidator, FirstContactIsBracketedOnOmplAppMotions)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cfg, "3D/cubicles.cfg");
+    // Short motions (a tenth of the space) so that both outcomes are common.
+    expectFirstContactsBracketed(cfg, "obb", 1e-6, false, 0.1);
+}
+
+// The planning set-up's bracket (1e-3 of a motion or one validity segment, whichever is coarser),
+// which the contact narrowed by collision checks first serves: a 3D problem and a planar one, with
+// the default checker.
+TEST(MotionValidator, FirstContactIsBracketedToOneSegmentAsPlannersAskIt)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cubicles, "3D/cubicles.cfg");
+    expectFirstContactsBracketed(cubicles, "auto", 1e-3, true, 0.2);
+    HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
+    expectFirstContactsBracketed(maze, "auto", 1e-3, true, 0.2);
 }
 
 namespace
