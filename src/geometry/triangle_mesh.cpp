@@ -28,6 +28,14 @@ double TriangleMesh::radiusAboutOrigin() const
     return r;
 }
 
+double TriangleMesh::radiusAboutZAxis() const
+{
+    double r = 0.0;
+    for (const Vec3 &v : vertices)
+        r = std::max(r, v.head<2>().norm());
+    return r;
+}
+
 std::size_t TriangleMesh::memoryBytes() const
 {
     return vertices.capacity() * sizeof(Vec3) + triangles.capacity() * sizeof(Triangle);

@@ -50,6 +50,7 @@ LoadedProblem loadProblem(const std::string &cfgPath, const MeshLimits &limits)
     p.scene.robotName = p.config.robotMesh;
     p.scene.environmentName = p.config.worldMesh;
     p.scene.planarPoses = p.config.planar;
+    p.scene.turnsAboutRobotZ = p.config.planar;  // SE(2): yaw only
     return p;
 }
 }  // namespace hcd

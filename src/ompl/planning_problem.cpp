@@ -100,8 +100,11 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
     {
         const BoundingBox box = problem.world.mesh->bounds();
         const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
-        auto validator = std::make_shared<ContinuousMotionValidator>(si, planning.validity,
-                                                                     problem.robot.mesh->radiusAboutOrigin(), scale);
+        // SE(2) turns about the robot's z axis (problem.scene says so to the checker): a point moves
+        // by its distance from that axis, not from the origin.
+        const double robotRadius = problem.scene.turnsAboutRobotZ ? problem.robot.mesh->radiusAboutZAxis()
+                                                                  : problem.robot.mesh->radiusAboutOrigin();
+        auto validator = std::make_shared<ContinuousMotionValidator>(si, planning.validity, robotRadius, scale);
         // Planners use the last valid state only to keep part of a blocked motion; bracketing the
         // contact to 1e-3 of the motion or one validity segment, whichever is coarser, keeps that
         // cheap (check-motion and the API default to 1e-6).

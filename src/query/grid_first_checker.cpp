@@ -22,6 +22,8 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     const DistinctFaceMesh environment = withoutRepeatedFaces(scene.environment);
     cover_ = sphereCover(*robot.mesh, std::clamp<std::size_t>(settings.robotSpheres, 1, 32));
     robotReach_ = scene.robot->radiusAboutOrigin() * (1.0 + 1e-12);
+    turnsAboutRobotZ_ = scene.turnsAboutRobotZ;
+    robotAxisReach_ = scene.robot->radiusAboutZAxis() * (1.0 + 1e-12);
     ClearanceGridSettings gridSettings;
     gridSettings.maxCells = settings.maxCells;
     // Cells around the mesh as wide as the largest cover sphere: a sphere that reaches the mesh has
@@ -225,15 +227,19 @@ std::optional<bool> GridFirstChecker::freeByFootprint(const RigidTransform &worl
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     // Every robot point's slack must stay below the height margin: the triangles left out are
     // farther than that.
-    if (!(translationSlack + radialSlack * robotReach_ + rounding < footprintHeightMargin_))
+    if (!(translationSlack + radialSlack * (turnsAboutRobotZ_ ? robotAxisReach_ : robotReach_) + rounding <
+          footprintHeightMargin_))
         return std::nullopt;
     const auto clears = [&](const CoverSphere &s) {
-        // A robot point over this circle lies within sqrt((|c| + r)^2 + z^2) of the robot origin.
+        // A robot point over this circle lies within |c| + r of the robot's z axis, and within
+        // sqrt((|c| + r)^2 + z^2) of its origin.
         double slack = translationSlack;
         if (radialSlack > 0.0)
         {
             const double planarReach = s.center.norm() + s.radius;
-            slack += radialSlack * std::sqrt(planarReach * planarReach + robotHeightReach_ * robotHeightReach_);
+            slack += radialSlack * (turnsAboutRobotZ_
+                                        ? planarReach
+                                        : std::sqrt(planarReach * planarReach + robotHeightReach_ * robotHeightReach_));
         }
         return footprintGrid_.clears(worldFromRobot.apply(s.center), s.radius + slack + rounding, false);
     };
@@ -262,9 +268,10 @@ bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double t
     // Rounding of R * c + t, relative to the magnitudes involved.
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     const auto clears = [&](const CoverSphere &s) {
-        // Points of the sphere lie within |c| + r of the robot's origin (no square root for a state).
-        const double slack =
-            radialSlack > 0.0 ? translationSlack + radialSlack * (s.center.norm() + s.radius) : translationSlack;
+        // Points of the sphere lie within |c| + r of the robot's origin, and within |(c.x, c.y)| + r
+        // of its z axis (no square root for a state).
+        const double reach = (turnsAboutRobotZ_ ? s.center.head<2>().norm() : s.center.norm()) + s.radius;
+        const double slack = radialSlack > 0.0 ? translationSlack + radialSlack * reach : translationSlack;
         return grid_.clears(worldFromRobot.apply(s.center), s.radius + slack + rounding, solid_);
     };
     // The root sphere holds the whole robot, solid included (a ball is convex): when it clears the

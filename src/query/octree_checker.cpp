@@ -26,19 +26,22 @@ double cellRadius(const Octree::Cell &c) { return std::sqrt(3.0) * c.halfSide * 
 OctreeChecker::OctreeChecker(CollisionScene scene, std::string name, Octree::Limits limits)
     : robotFaces_(withoutRepeatedFaces(scene.robot)),
       environmentFaces_(withoutRepeatedFaces(scene.environment)),
-      scene_{robotFaces_.mesh, environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName)},
+      scene_{robotFaces_.mesh,  environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName),
+             scene.planarPoses, scene.turnsAboutRobotZ},
       name_(std::move(name)),
       robotTree_(scene_.robot, 1),
       octree_(scene_.environment, limits),
       robotRadius_(scene_.robot->radiusAboutOrigin()),
       environmentMagnitude_(scene_.environment->radiusAboutOrigin())
 {
+    // Reaches from the robot origin, or from its z axis when motions turn about it.
     const TriangleMesh &robot = *scene_.robot;
+    const auto reach = [&](const Vec3 &p) { return scene_.turnsAboutRobotZ ? p.head<2>().norm() : p.norm(); };
     for (const auto &node : robotTree_.nodes())
-        robotNodeReach_.push_back((node.volume.center.norm() + node.radius) * (1.0 + 1e-12));
+        robotNodeReach_.push_back((reach(node.volume.center) + node.radius) * (1.0 + 1e-12));
     for (std::size_t t = 0; t < robot.triangleCount(); ++t)
         robotTriangleReach_.push_back(
-            std::max({robot.corner(t, 0).norm(), robot.corner(t, 1).norm(), robot.corner(t, 2).norm()}) *
+            std::max({reach(robot.corner(t, 0)), reach(robot.corner(t, 1)), reach(robot.corner(t, 2))}) *
             (1.0 + 1e-12));
     const TriangleMesh &env = *scene_.environment;
     environmentTriangleBounds_.reserve(env.triangleCount());

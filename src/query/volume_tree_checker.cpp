@@ -99,7 +99,8 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
                                              std::optional<PieceStage> pieces, std::optional<double> leafTolerance)
     : robotFaces_(withoutRepeatedFaces(scene.robot)),
       environmentFaces_(withoutRepeatedFaces(scene.environment)),
-      scene_{robotFaces_.mesh, environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName)},
+      scene_{robotFaces_.mesh,  environmentFaces_.mesh, std::move(scene.robotName), std::move(scene.environmentName),
+             scene.planarPoses, scene.turnsAboutRobotZ},
       name_(std::move(name)),
       robotTree_(scene_.robot, pieces ? pieces->leafTriangles : maxLeafTriangles),
       environmentTree_(scene_.environment, pieces ? pieces->leafTriangles : maxLeafTriangles),
@@ -113,13 +114,15 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
         placeOnMedialAxis(robotTree_, scene_.robot);
         placeOnMedialAxis(environmentTree_, scene_.environment);
     }
-    // How far each robot node and triangle reaches from the robot origin (for swept proximity).
+    // How far each robot node and triangle reaches from the robot origin, or from its z axis when
+    // motions turn about it (for swept proximity).
     const TriangleMesh &robot = *scene_.robot;
+    const auto reach = [&](const Vec3 &p) { return scene_.turnsAboutRobotZ ? p.head<2>().norm() : p.norm(); };
     for (const auto &node : robotTree_.nodes())
-        robotNodeReach_.push_back((VolumeTraits<Volume>::center(node.volume).norm() + node.radius) * (1.0 + 1e-12));
+        robotNodeReach_.push_back((reach(VolumeTraits<Volume>::center(node.volume)) + node.radius) * (1.0 + 1e-12));
     for (std::size_t t = 0; t < robot.triangleCount(); ++t)
         robotTriangleReach_.push_back(
-            std::max({robot.corner(t, 0).norm(), robot.corner(t, 1).norm(), robot.corner(t, 2).norm()}) *
+            std::max({reach(robot.corner(t, 0)), reach(robot.corner(t, 1)), reach(robot.corner(t, 2))}) *
             (1.0 + 1e-12));
     if (pieceStage_)
     {

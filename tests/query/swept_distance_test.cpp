@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 using namespace hcd;
@@ -308,5 +309,108 @@ TEST(SweptDistance, NearPairListsRefuseWhatPairsCannotDecide)
                         ->listSweptNearPairs(inside, 0.5, 0.01, 64, near, context))
             << name;
         EXPECT_TRUE(near.empty()) << name;
+    }
+}
+
+namespace
+{
+// corridor_2d with its robot stretched 6x along z: most of the robot's reach about its origin is
+// then height, which a turn about the z axis does not move.
+CollisionScene tallRobotScene(const LoadedProblem &problem, bool turnsAboutRobotZ)
+{
+    auto tall = std::make_shared<TriangleMesh>(*problem.robot.mesh);
+    for (Vec3 &v : tall->vertices)
+        v.z() *= 6.0;
+    CollisionScene scene = problem.scene;
+    scene.robot = tall;
+    scene.planarPoses = true;
+    scene.turnsAboutRobotZ = turnsAboutRobotZ;
+    return scene;
+}
+}  // namespace
+
+TEST(SweptDistance, TurnsAboutTheRobotZAxisCountRadialSlackFromIt)
+{
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/corridor_2d.cfg"));
+    const CollisionScene scene = tallRobotScene(problem, true), anyAxis = tallRobotScene(problem, false);
+    const TriangleMesh &robot = *scene.robot, &environment = *scene.environment;
+    ASSERT_GT(robot.radiusAboutOrigin(), 1.5 * robot.radiusAboutZAxis());
+    const std::vector<Vec3> samples = surfaceSamples(robot, 4);
+    test::TestRandom rng(test::seeded(37));
+    const auto poses = test::randomPoses(problem, 240, rng);  // planar: (x, y, yaw)
+    std::uniform_real_distribution<double> slack(0.0, 0.1), radial(0.0, 1.5);
+    const auto reference = makeChecker("bruteforce", scene);
+    std::size_t gained = 0, provenAll = 0;
+    for (const std::string &name : CheckerCatalogue::builtIn().names())
+    {
+        const auto checker = makeChecker(name, scene), fromOrigin = makeChecker(name, anyAxis);
+        std::size_t proven = 0, notProven = 0;
+        test::TestRandom slackRng(test::seeded(38));
+        for (const RigidTransform &pose : poses)
+        {
+            const double t = slack(slackRng), r = radial(slackRng);
+            const bool firstLayer = checker->sweptFreeByFirstLayer(pose, t, r);
+            const bool within = checker->withinSweptDistance(pose, t, r, robot.radiusAboutZAxis());
+            // A first layer's proof is one the full query makes too.
+            ASSERT_FALSE(firstLayer && within) << name;
+            if (within)
+            {
+                ++notProven;
+                continue;
+            }
+            ++proven;
+            gained += fromOrigin->withinSweptDistance(pose, t, r, robot.radiusAboutOrigin());
+            ASSERT_FALSE(reference->collides(pose)) << name;
+            for (const Vec3 &p : samples)
+                ASSERT_GT(distanceToSurface(pose.apply(p), environment), t + r * p.head<2>().norm())
+                    << name << ": robot point (" << p.transpose() << ") is within its reach about the z axis";
+        }
+        EXPECT_GT(proven, 20u) << name;
+        EXPECT_GT(notProven, 20u) << name;
+        provenAll += proven;
+    }
+    // Counting from the axis proves poses that counting from the origin cannot.
+    EXPECT_GT(gained, 50u) << "of " << provenAll;
+}
+
+TEST(SweptDistance, CertifiedTurnsAboutTheRobotZAxisAreFreeUnderDenseSampling)
+{
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/corridor_2d.cfg"));
+    const CollisionScene scene = tallRobotScene(problem, true);
+    const double radius = scene.robot->radiusAboutZAxis();
+    test::TestRandom rng(test::seeded(39));
+    const auto starts = test::randomPoses(problem, 240, rng);
+    std::uniform_real_distribution<double> step(-3.0, 3.0), unit(0.0, 1.0);
+    const auto reference = makeChecker("bruteforce", scene);
+    for (const std::string &name : {"auto", "obb", "aabb", "kdop18", "octree", "bruteforce"})
+    {
+        const auto checker = makeChecker(name, scene);
+        std::size_t certified = 0, refused = 0;
+        test::TestRandom motionRng(test::seeded(40));
+        for (const RigidTransform &a : starts)
+        {
+            // SE(2): x, y and yaw linear in tau (a turn of up to 2 rad), and an interval [lo, hi].
+            const double yawA = std::atan2(a.rotation(1, 0), a.rotation(0, 0));
+            const double dx = step(motionRng), dy = step(motionRng), turn = 2.0 * (unit(motionRng) - 0.5) * 2.0;
+            const auto at = [&](double tau) {
+                return RigidTransform::fromPlanarPose(a.translation.x() + tau * dx, a.translation.y() + tau * dy,
+                                                      yawA + tau * turn);
+            };
+            const double lo = 0.5 * unit(motionRng), hi = lo + 0.5 * unit(motionRng);
+            const double half = 0.5 * (hi - lo);
+            const double translationSlack = std::hypot(dx, dy) * half * (1.0 + 1e-9);
+            const double radialSlack = std::abs(turn) * half * (1.0 + 1e-9) + 1e-15;
+            if (checker->withinSweptDistance(at(lo + half), translationSlack, radialSlack, radius))
+            {
+                ++refused;
+                continue;
+            }
+            ++certified;
+            for (int k = 0; k <= 200; ++k)
+                ASSERT_FALSE(reference->collides(at(lo + (hi - lo) * k / 200)))
+                    << name << ": a certified interval collides at sample " << k;
+        }
+        EXPECT_GT(certified, 15u) << name;
+        EXPECT_GT(refused, 15u) << name;
     }
 }

@@ -21,5 +21,12 @@ struct CollisionScene
     /// z = 0. A hint for first layers that can use it (a footprint grid); every pose, planar or
     /// not, is still answered exactly.
     bool planarPoses = false;
+    /// Every motion the swept queries (CollisionChecker::withinSweptDistance and the others) are
+    /// asked about turns the robot about its own z axis only, as OMPL's SE(2) interpolation does:
+    /// their radial slack then counts from that axis, a robot point p moving up to
+    /// radialSlack * |(p.x, p.y)|, instead of from the origin (radialSlack * |p|). Unlike
+    /// planarPoses, a promise, not a hint: a motion that tilts the robot breaks it. Tall robots
+    /// gain most: a point high above the ground plane moves no farther for its height.
+    bool turnsAboutRobotZ = false;
 };
 }  // namespace hcd

@@ -51,6 +51,8 @@ struct TriangleMesh
 
     /// Largest distance of a vertex from the origin of the mesh frame (0 for an empty mesh).
     double radiusAboutOrigin() const;
+    /// Largest distance of a vertex from the z axis (the largest |(x, y)|).
+    double radiusAboutZAxis() const;
 
     /// Bytes held by the vertex and triangle arrays.
     std::size_t memoryBytes() const;

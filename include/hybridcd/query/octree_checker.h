@@ -59,7 +59,8 @@ private:
     double robotRadius_ = 0.0;
     double environmentMagnitude_ = 0.0;
     std::vector<TriangleBounds> environmentTriangleBounds_;  ///< per mesh triangle, for a cheap exact reject
-    std::vector<double> robotNodeReach_;                     ///< per robot node: max |p| over its volume (robot frame)
-    std::vector<double> robotTriangleReach_;                 ///< per robot triangle: max |corner|
+    std::vector<double>
+        robotNodeReach_;  ///< per robot node: max |p| over its volume (robot frame; |(p.x, p.y)| turning about z)
+    std::vector<double> robotTriangleReach_;  ///< per robot triangle: max |corner| (or its distance from z)
 };
 }  // namespace hcd
