@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -42,27 +43,39 @@ struct Timing
     std::vector<char> valid;
 };
 
-// Every motion checked in turn, `repeat` passes over all of them, each timed by its fastest pass:
-// a long motion's time then no longer moves with what else the machine did meanwhile, while each
-// check still follows the motion before it (the caches a query stream warms stay as one pass
-// leaves them).
-template <class Check>
-Timing timeAll(const std::vector<std::pair<ob::State *, ob::State *>> &motions, const Check &check, std::size_t repeat)
+using TimedCheck = std::function<bool(ob::State *, ob::State *)>;
+
+// Each check over every motion in turn, `repeat` passes of all the checks one after the other,
+// each motion timed by its fastest pass: a long motion's time no longer moves with what else the
+// machine did meanwhile, the checks' passes interleave (so the machine's slow spells fall on all
+// of them alike, and ratios between them hold), and each check still follows the motion before it
+// (the caches a query stream warms stay as one pass leaves them).
+std::vector<Timing> timeAll(const std::vector<std::pair<ob::State *, ob::State *>> &motions,
+                            const std::vector<TimedCheck> &checks, std::size_t repeat)
 {
-    std::vector<double> us(motions.size(), std::numeric_limits<double>::infinity());
-    std::vector<char> valid(motions.size(), 0);
+    std::vector<std::vector<double>> us(checks.size(),
+                                        std::vector<double>(motions.size(), std::numeric_limits<double>::infinity()));
+    std::vector<Timing> timings(checks.size());
+    for (Timing &t : timings)
+        t.valid.assign(motions.size(), 0);
     for (std::size_t pass = 0; pass < repeat; ++pass)
-        for (std::size_t i = 0; i < motions.size(); ++i)
-        {
-            const auto t0 = std::chrono::steady_clock::now();
-            valid[i] = check(motions[i].first, motions[i].second);
-            us[i] = std::min(us[i],
-                             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-        }
-    double sum = 0.0;
-    for (double t : us)
-        sum += t;
-    return {median(us), us.empty() ? 0.0 : sum / double(us.size()), std::move(valid)};
+        for (std::size_t c = 0; c < checks.size(); ++c)
+            for (std::size_t i = 0; i < motions.size(); ++i)
+            {
+                const auto t0 = std::chrono::steady_clock::now();
+                timings[c].valid[i] = checks[c](motions[i].first, motions[i].second);
+                us[c][i] = std::min(
+                    us[c][i], std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+            }
+    for (std::size_t c = 0; c < checks.size(); ++c)
+    {
+        double sum = 0.0;
+        for (double t : us[c])
+            sum += t;
+        timings[c].median = median(us[c]);
+        timings[c].mean = motions.empty() ? 0.0 : sum / double(motions.size());
+    }
+    return timings;
 }
 }  // namespace
 
@@ -129,29 +142,27 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             } while (!si->isValid(b));
             motions.emplace_back(a, b);
         }
-        const auto continuous = timeAll(
-            motions, [&](auto *a, auto *b) { return si->checkMotion(a, b); }, repeat);
         // With lastValid asked for, the validator also brackets the first contact of a blocked motion.
         std::pair<ob::State *, double> lastValid(si->allocState(), 0.0);
-        // With --translations, first without the exact first contact (bisection alone), then with it.
-        Timing bisected;
+        auto &validator = *obb.continuousValidator;
+        const auto finder = std::make_shared<const TranslationContactFinder>(problem.scene);
+        std::vector<TimedCheck> checks{
+            [&](ob::State *a, ob::State *b) { return si->checkMotion(a, b); },
+            [&](ob::State *a, ob::State *b) { return si->getMotionValidator()->checkMotion(a, b, lastValid); },
+            [&](ob::State *a, ob::State *b) { return fcl.setup->getSpaceInformation()->checkMotion(a, b); },
+            [&](ob::State *a, ob::State *b) { return obbDiscrete.setup->getSpaceInformation()->checkMotion(a, b); }};
+        // With --translations, also without the exact first contact (bisection alone).
         if (translations)
-        {
-            const auto finder = std::make_shared<const TranslationContactFinder>(problem.scene);
-            auto &validator = *obb.continuousValidator;
-            validator.setTranslationContactFinder(nullptr);
-            bisected = timeAll(
-                motions, [&](auto *a, auto *b) { return validator.checkMotion(a, b, lastValid); }, repeat);
-            validator.setTranslationContactFinder(finder);
-        }
-        const auto bracketed = timeAll(
-            motions, [&](auto *a, auto *b) { return si->getMotionValidator()->checkMotion(a, b, lastValid); }, repeat);
+            checks.push_back([&](ob::State *a, ob::State *b) {
+                validator.setTranslationContactFinder(nullptr);
+                const bool free = validator.checkMotion(a, b, lastValid);
+                validator.setTranslationContactFinder(finder);
+                return free;
+            });
+        const std::vector<Timing> timings = timeAll(motions, checks, repeat);
         si->freeState(lastValid.first);
-        const auto discreteFcl = timeAll(
-            motions, [&](auto *a, auto *b) { return fcl.setup->getSpaceInformation()->checkMotion(a, b); }, repeat);
-        const auto discreteObb = timeAll(
-            motions, [&](auto *a, auto *b) { return obbDiscrete.setup->getSpaceInformation()->checkMotion(a, b); },
-            repeat);
+        const Timing &continuous = timings[0], &bracketed = timings[1], &discreteFcl = timings[2],
+                     &discreteObb = timings[3];
         // Touching: brute force at 20x OMPL's resolution finds a contact.
         const auto reference = checkers.make("bruteforce", problem.scene);
         ob::State *s = si->allocState();
@@ -186,7 +197,7 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
         row("continuous", "obb", continuous);
         row("continuous, lastValid", "obb", bracketed);
         if (translations)
-            row("continuous, lastValid, bisection only", "obb", bisected);
+            row("continuous, lastValid, bisection only", "obb", timings[4]);
         row("discrete", "obb", discreteObb);
         row("discrete", "fcl", discreteFcl);
         for (auto &[a, b] : motions)
