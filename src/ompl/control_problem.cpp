@@ -96,11 +96,17 @@ std::shared_ptr<StateValidityChecker> installControlChecker(ControlProblem &plan
     planning.poseValidity = std::make_shared<StateValidityChecker>(planning.poseSpace, std::move(checker),
                                                                    problem.scene, problem.config.planar);
     planning.poseSpace->setStateValidityChecker(planning.poseValidity);
+    // A checker that counts turns from the robot's z axis is sound for SE(2) motions alone.
+    const bool turnsAboutRobotZ = planning.poseValidity->checker().turnsAboutRobotZ();
+    if (turnsAboutRobotZ && !problem.config.planar)
+        throw std::invalid_argument("the checker's swept queries count turns about the robot's z axis "
+                                    "(CollisionScene::turnsAboutRobotZ), which only a planar problem's motions keep");
     si->setStateValidityChecker(std::make_shared<ControlValidityChecker>(si, planning.model, planning.poseValidity));
     planning.settings.motion = motion;
     planning.propagator = std::make_shared<VehiclePropagator>(
         si, planning.model, planning.settings.integrationStep,
-        motion == MotionCheck::Continuous ? planning.poseValidity : nullptr, problem.robot.mesh->radiusAboutOrigin());
+        motion == MotionCheck::Continuous ? planning.poseValidity : nullptr,
+        turnsAboutRobotZ ? problem.robot.mesh->radiusAboutZAxis() : problem.robot.mesh->radiusAboutOrigin());
     si->setStatePropagator(planning.propagator);
     return planning.poseValidity;
 }

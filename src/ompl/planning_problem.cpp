@@ -96,14 +96,19 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
     planning.validity =
         std::make_shared<StateValidityChecker>(si, std::move(checker), problem.scene, problem.config.planar);
     si->setStateValidityChecker(planning.validity);
+    // A checker that counts turns from the robot's z axis is sound for SE(2) motions alone.
+    const bool turnsAboutRobotZ = planning.validity->checker().turnsAboutRobotZ();
+    if (turnsAboutRobotZ && !problem.config.planar)
+        throw std::invalid_argument("the checker's swept queries count turns about the robot's z axis "
+                                    "(CollisionScene::turnsAboutRobotZ), which only a planar problem's motions keep");
     if (motion == MotionCheck::Continuous)
     {
         const BoundingBox box = problem.world.mesh->bounds();
         const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
-        // SE(2) turns about the robot's z axis (problem.scene says so to the checker): a point moves
-        // by its distance from that axis, not from the origin.
-        const double robotRadius = problem.scene.turnsAboutRobotZ ? problem.robot.mesh->radiusAboutZAxis()
-                                                                  : problem.robot.mesh->radiusAboutOrigin();
+        // The robot's reach as the checker counts it: from its z axis when the checker counts SE(2)
+        // turns from there, from its origin otherwise.
+        const double robotRadius =
+            turnsAboutRobotZ ? problem.robot.mesh->radiusAboutZAxis() : problem.robot.mesh->radiusAboutOrigin();
         auto validator = std::make_shared<ContinuousMotionValidator>(si, planning.validity, robotRadius, scale);
         // Planners use the last valid state only to keep part of a blocked motion; bracketing the
         // contact to 1e-3 of the motion or one validity segment, whichever is coarser, keeps that

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 using namespace hcd;
@@ -350,6 +351,85 @@ TEST(MotionValidator, FirstContactIsBracketedToOneSegmentAsPlannersAskIt)
     expectFirstContactsBracketed(cubicles, "auto", 1e-3, true, 0.2);
     HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
     expectFirstContactsBracketed(maze, "auto", 1e-3, true, 0.2);
+}
+
+// A tall robot on a planar problem (SE(2), its turns counted from its z axis) crossing a thin wall
+// on its way to a closed box that holds s2: the verdict's contact is s2, the first contact the wall,
+// which the search finds by narrowing twice. Then a start closer to the wall than the bracket: the
+// last valid state is s1 itself.
+TEST(MotionValidator, FirstContactOfATallPlanarRobotIsTheThinWallBeforeTheVerdictsContact)
+{
+    TriangleMesh environment;
+    environment.vertices = {Vec3(3, -10, -10), Vec3(3, 10, -10), Vec3(3, 10, 10), Vec3(3, -10, 10)};
+    environment.triangles = {{0, 1, 2}, {0, 2, 3}};
+    const TriangleMesh box = test::boxMesh(Vec3(8, -10, -10), Vec3(12, 10, 10));
+    for (const Vec3 &v : box.vertices)
+        environment.vertices.push_back(v);
+    for (const auto &t : box.triangles)
+        environment.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+    LoadedProblem problem = makeProblem(test::boxMesh(Vec3(-0.5, -0.5, -3), Vec3(0.5, 0.5, 3)), environment);
+    problem.config.planar = true;
+    problem.scene.planarPoses = problem.scene.turnsAboutRobotZ = true;
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const std::string checker : {"auto", "obb"})
+    {
+        SCOPED_TRACE(checker);
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker(checker, problem.scene));
+        planning.setup->setup();
+        ASSERT_TRUE(planning.validity->checker().turnsAboutRobotZ());
+        const auto si = planning.setup->getSpaceInformation();
+        auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+        ob::ScopedState<> a(si), b(si), s(si);
+        const auto set = [](ob::ScopedState<> &state, double x, double y, double yaw) {
+            state->as<ob::SE2StateSpace::StateType>()->setXY(x, y);
+            state->as<ob::SE2StateSpace::StateType>()->setYaw(yaw);
+        };
+        for (const auto &[tolerance, perSegment] : {std::pair{1e-3, true}, std::pair{1e-6, false}})
+        {
+            SCOPED_TRACE(tolerance);
+            validator.setContactTolerance(tolerance, perSegment);
+            const double bracket =
+                perSegment
+                    ? std::max(tolerance, 1.0 / std::max(1u, si->getStateSpace()->validSegmentCount(a.get(), b.get())))
+                    : tolerance;
+            set(a, 0.0, 0.0, 0.0);
+            set(b, 10.0, 0.5, 0.4);
+            const int steps = 20000;
+            const double sampled = sampledFirstContact(si, true, *reference, a.get(), b.get(), steps);
+            ASSERT_LT(sampled, 0.35);  // the wall, well before the box
+            const auto report = validator.checkMotionDetailed(a.get(), b.get());
+            EXPECT_FALSE(report.free);
+            ASSERT_TRUE(report.blocked);
+            EXPECT_LE(report.blockedAt - report.lastFree, bracket);
+            EXPECT_LE(report.lastFree, sampled);
+            EXPECT_GE(report.blockedAt, sampled - 1.0 / steps);
+            for (int k = 0; k <= 400; ++k)
+            {
+                si->getStateSpace()->interpolate(a.get(), b.get(), report.lastFree * k / 400, s.get());
+                ASSERT_FALSE(reference->collides(poseOfState(s.get(), true)));
+            }
+            ASSERT_TRUE(report.contactFound);
+            si->getStateSpace()->interpolate(a.get(), b.get(), report.contactAt, s.get());
+            EXPECT_TRUE(reference->collides(poseOfState(s.get(), true)));
+            std::pair<ob::State *, double> last{si->allocState(), -1.0};
+            EXPECT_FALSE(validator.checkMotion(a.get(), b.get(), last));
+            EXPECT_EQ(last.second, report.lastFree);
+            si->freeState(last.first);
+
+            // The robot's face 1e-7 before the wall, moving into it: the contact lies within the
+            // bracket after s1.
+            set(a, 2.5 - 1e-7, 0.0, 0.0);
+            set(b, 6.0, 0.0, 0.0);
+            const auto close = validator.checkMotionDetailed(a.get(), b.get());
+            EXPECT_FALSE(close.free);
+            ASSERT_TRUE(close.blocked);
+            EXPECT_EQ(close.lastFree, 0.0);
+            EXPECT_LE(close.blockedAt, bracket);
+        }
+    }
+    // A checker that counts turns from the z axis is refused for a problem whose motions tilt.
+    problem.config.planar = false;
+    EXPECT_THROW(makePlanningProblem(problem, makeChecker("obb", problem.scene)), std::invalid_argument);
 }
 
 namespace

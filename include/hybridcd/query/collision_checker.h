@@ -120,7 +120,10 @@ public:
 
     /// Swept proximity: false proves that no robot point p (robot frame) comes within
     /// `translationSlack + radialSlack * |p|` of the environment at this pose, which is how far p can
-    /// move during a motion interval (translation plus rotation about the robot origin).
+    /// move during a motion interval (translation plus rotation about the robot origin). A checker
+    /// built from a scene that turns about the robot's z axis (turnsAboutRobotZ()) counts
+    /// `|(p.x, p.y)|` instead of `|p|`, here and in every swept query below: only for motions that
+    /// turn the robot about that axis alone (SE(2)).
     bool withinSweptDistance(const RigidTransform &worldFromRobot, double translationSlack, double radialSlack,
                              double robotRadius, QueryContext &context) const
     {
@@ -144,6 +147,9 @@ public:
     /// than this is better split and proved by the first layer than sent to the exact query, which
     /// grows every box by the whole sweep.
     virtual double firstLayerCellSize() const { return 0.0; }
+    /// Whether the swept queries count radial slack from the robot's z axis
+    /// (CollisionScene::turnsAboutRobotZ) rather than from its origin.
+    virtual bool turnsAboutRobotZ() const { return false; }
 
     /// Swept proximity that says what is near: when it returns true, `near` holds every pair of
     /// robot and environment triangles that may come within the swept slack at this pose (as

@@ -74,6 +74,8 @@ public:
     /// The footprint grid's cells in a planar scene, else the 3D grid's. A planar scene's proofs
     /// fall back to the coarser 3D grid for poses that are not planar and for sweeps of the robot's
     /// reach or more: those only cost time.
+    /// Either layer counting from the axis makes every swept query an SE(2)-only one.
+    bool turnsAboutRobotZ() const override { return turnsAboutRobotZ_ || exact_->turnsAboutRobotZ(); }
     double firstLayerCellSize() const override
     {
         return !footprintGrid_.empty() ? footprintGrid_.cellSize() : grid_.empty() ? 0.0 : grid_.cellSize();

@@ -19,6 +19,7 @@ class OctreeChecker final : public CollisionChecker
 public:
     OctreeChecker(CollisionScene scene, std::string name, Octree::Limits limits = {});
     std::string name() const override { return name_; }
+    bool turnsAboutRobotZ() const override { return scene_.turnsAboutRobotZ; }
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
     /// Robot OBB tree level `level`, and the octree's cells of that depth (or leaves above it).
     std::optional<LevelVolumes> levelVolumes(int level) const override;

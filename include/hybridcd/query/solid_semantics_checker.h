@@ -30,6 +30,7 @@ public:
     SolidSemanticsChecker(std::unique_ptr<CollisionChecker> surface, const CollisionScene &scene);
 
     std::string name() const override { return surface_->name(); }
+    bool turnsAboutRobotZ() const override { return surface_->turnsAboutRobotZ(); }
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override
     {
         return surface_->hierarchies(withVolumeRatios);

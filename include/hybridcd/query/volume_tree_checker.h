@@ -47,6 +47,7 @@ public:
                       std::optional<PieceStage> pieces = std::nullopt,
                       std::optional<double> leafTolerance = std::nullopt);
     std::string name() const override { return name_; }
+    bool turnsAboutRobotZ() const override { return scene_.turnsAboutRobotZ; }
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;
     std::optional<LevelVolumes> levelVolumes(int level) const override;
 
