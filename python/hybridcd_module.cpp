@@ -309,6 +309,8 @@ std::shared_ptr<Scene> sceneFromMeshes(const std::string &robot, const std::stri
     p.scene.environment = p.world.mesh;
     p.scene.robotName = robot;
     p.scene.environmentName = environment;
+    // As loadProblem sets them for a planar problem: SE(2) poses, turns about the robot's z axis.
+    p.scene.planarPoses = p.scene.turnsAboutRobotZ = planar;
     auto scene = std::make_shared<Scene>();
     scene->data = std::make_shared<const LoadedProblem>(std::move(p));
     return scene;
