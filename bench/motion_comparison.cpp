@@ -145,7 +145,6 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
         // With lastValid asked for, the validator also brackets the first contact of a blocked motion.
         std::pair<ob::State *, double> lastValid(si->allocState(), 0.0);
         auto &validator = *obb.continuousValidator;
-        const auto finder = std::make_shared<const TranslationContactFinder>(problem.scene);
         std::vector<TimedCheck> checks{
             [&](ob::State *a, ob::State *b) { return si->checkMotion(a, b); },
             [&](ob::State *a, ob::State *b) { return si->getMotionValidator()->checkMotion(a, b, lastValid); },
@@ -153,7 +152,8 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
             [&](ob::State *a, ob::State *b) { return obbDiscrete.setup->getSpaceInformation()->checkMotion(a, b); }};
         // With --translations, also without the exact first contact (bisection alone).
         if (translations)
-            checks.push_back([&](ob::State *a, ob::State *b) {
+            checks.push_back([&, finder = std::make_shared<const TranslationContactFinder>(problem.scene)](
+                                 ob::State *a, ob::State *b) {
                 validator.setTranslationContactFinder(nullptr);
                 const bool free = validator.checkMotion(a, b, lastValid);
                 validator.setTranslationContactFinder(finder);

@@ -15,9 +15,10 @@ namespace
 {
 // How far OMPL's interpolation from s1 to s2 moves the robot per unit of tau: a robot point p (robot
 // frame) moves at most translation + angle * |p| (|(p.x, p.y)| for SE(2) with a checker that counts
-// turns from the robot's z axis, CollisionChecker::turnsAboutRobotZ). `endTurn` is the turn left between OMPL's state
-// at tau = 1 and s2 itself: SO3's interpolation keeps R1 to the end below about 9e-5 rad, so s2 is
-// reached by a turn of the whole angle that no interval sweeps; every interval's slack covers it.
+// turns from the robot's z axis, CollisionChecker::turnsAboutRobotZ). `endTurn` is the turn left
+// between OMPL's state at tau = 1 and s2 itself: SO3's interpolation keeps R1 to the end below
+// about 9e-5 rad, so s2 is reached by a turn of the whole angle that no interval sweeps; every
+// interval's slack covers it.
 // Margins cover rounding in the bound: the lengths and angles are computed in floating point.
 struct MotionRates
 {
@@ -419,7 +420,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     double target = end;  // the prefix to certify
     if (contactKnown)
     {
-        contactAt = end = narrow(freeState, end);
+        contactAt = narrow(freeState, end);
         target = certifyBefore(0.0, contactAt);
     }
     // Start from groups of kCertifyStartSegments of OMPL's segments rather than [0, 1]: short

@@ -103,10 +103,10 @@ std::shared_ptr<StateValidityChecker> installControlChecker(ControlProblem &plan
                                     "(CollisionScene::turnsAboutRobotZ), which only a planar problem's motions keep");
     si->setStateValidityChecker(std::make_shared<ControlValidityChecker>(si, planning.model, planning.poseValidity));
     planning.settings.motion = motion;
-    planning.propagator = std::make_shared<VehiclePropagator>(
-        si, planning.model, planning.settings.integrationStep,
-        motion == MotionCheck::Continuous ? planning.poseValidity : nullptr,
-        turnsAboutRobotZ ? problem.robot.mesh->radiusAboutZAxis() : problem.robot.mesh->radiusAboutOrigin());
+    planning.propagator =
+        std::make_shared<VehiclePropagator>(si, planning.model, planning.settings.integrationStep,
+                                            motion == MotionCheck::Continuous ? planning.poseValidity : nullptr,
+                                            robotTurnRadius(*problem.robot.mesh, turnsAboutRobotZ));
     si->setStatePropagator(planning.propagator);
     return planning.poseValidity;
 }

@@ -107,9 +107,8 @@ std::shared_ptr<StateValidityChecker> installChecker(PlanningProblem &planning, 
         const double scale = box.empty() ? 1.0 : (box.max - box.min).norm();
         // The robot's reach as the checker counts it: from its z axis when the checker counts SE(2)
         // turns from there, from its origin otherwise.
-        const double robotRadius =
-            turnsAboutRobotZ ? problem.robot.mesh->radiusAboutZAxis() : problem.robot.mesh->radiusAboutOrigin();
-        auto validator = std::make_shared<ContinuousMotionValidator>(si, planning.validity, robotRadius, scale);
+        auto validator = std::make_shared<ContinuousMotionValidator>(
+            si, planning.validity, robotTurnRadius(*problem.robot.mesh, turnsAboutRobotZ), scale);
         // Planners use the last valid state only to keep part of a blocked motion; bracketing the
         // contact to 1e-3 of the motion or one validity segment, whichever is coarser, keeps that
         // cheap (check-motion and the API default to 1e-6).

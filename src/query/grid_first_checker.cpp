@@ -23,7 +23,7 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     cover_ = sphereCover(*robot.mesh, std::clamp<std::size_t>(settings.robotSpheres, 1, 32));
     robotReach_ = scene.robot->radiusAboutOrigin() * (1.0 + 1e-12);
     turnsAboutRobotZ_ = scene.turnsAboutRobotZ;
-    robotAxisReach_ = scene.robot->radiusAboutZAxis() * (1.0 + 1e-12);
+    robotTurnReach_ = robotTurnRadius(*scene.robot, turnsAboutRobotZ_) * (1.0 + 1e-12);
     ClearanceGridSettings gridSettings;
     gridSettings.maxCells = settings.maxCells;
     // Cells around the mesh as wide as the largest cover sphere: a sphere that reaches the mesh has
@@ -227,8 +227,7 @@ std::optional<bool> GridFirstChecker::freeByFootprint(const RigidTransform &worl
     const double rounding = 1e-9 * (worldFromRobot.translation.cwiseAbs().maxCoeff() + robotReach_);
     // Every robot point's slack must stay below the height margin: the triangles left out are
     // farther than that.
-    if (!(translationSlack + radialSlack * (turnsAboutRobotZ_ ? robotAxisReach_ : robotReach_) + rounding <
-          footprintHeightMargin_))
+    if (!(translationSlack + radialSlack * robotTurnReach_ + rounding < footprintHeightMargin_))
         return std::nullopt;
     const auto clears = [&](const CoverSphere &s) {
         // A robot point over this circle lies within |c| + r of the robot's z axis, and within
@@ -270,7 +269,7 @@ bool GridFirstChecker::freeByGrid(const RigidTransform &worldFromRobot, double t
     const auto clears = [&](const CoverSphere &s) {
         // Points of the sphere lie within |c| + r of the robot's origin, and within |(c.x, c.y)| + r
         // of its z axis (no square root for a state).
-        const double reach = (turnsAboutRobotZ_ ? s.center.head<2>().norm() : s.center.norm()) + s.radius;
+        const double reach = turnReach(s.center, turnsAboutRobotZ_) + s.radius;
         const double slack = radialSlack > 0.0 ? translationSlack + radialSlack * reach : translationSlack;
         return grid_.clears(worldFromRobot.apply(s.center), s.radius + slack + rounding, solid_);
     };

@@ -35,14 +35,10 @@ OctreeChecker::OctreeChecker(CollisionScene scene, std::string name, Octree::Lim
       environmentMagnitude_(scene_.environment->radiusAboutOrigin())
 {
     // Reaches from the robot origin, or from its z axis when motions turn about it.
-    const TriangleMesh &robot = *scene_.robot;
-    const auto reach = [&](const Vec3 &p) { return scene_.turnsAboutRobotZ ? p.head<2>().norm() : p.norm(); };
     for (const auto &node : robotTree_.nodes())
-        robotNodeReach_.push_back((reach(node.volume.center) + node.radius) * (1.0 + 1e-12));
-    for (std::size_t t = 0; t < robot.triangleCount(); ++t)
-        robotTriangleReach_.push_back(
-            std::max({reach(robot.corner(t, 0)), reach(robot.corner(t, 1)), reach(robot.corner(t, 2))}) *
-            (1.0 + 1e-12));
+        robotNodeReach_.push_back((turnReach(node.volume.center, scene_.turnsAboutRobotZ) + node.radius) *
+                                  (1.0 + 1e-12));
+    robotTriangleReach_ = triangleTurnReaches(*scene_.robot, scene_.turnsAboutRobotZ);
     const TriangleMesh &env = *scene_.environment;
     environmentTriangleBounds_.reserve(env.triangleCount());
     for (std::size_t t = 0; t < env.triangleCount(); ++t)

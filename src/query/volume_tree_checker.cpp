@@ -116,14 +116,11 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
     }
     // How far each robot node and triangle reaches from the robot origin, or from its z axis when
     // motions turn about it (for swept proximity).
-    const TriangleMesh &robot = *scene_.robot;
-    const auto reach = [&](const Vec3 &p) { return scene_.turnsAboutRobotZ ? p.head<2>().norm() : p.norm(); };
     for (const auto &node : robotTree_.nodes())
-        robotNodeReach_.push_back((reach(VolumeTraits<Volume>::center(node.volume)) + node.radius) * (1.0 + 1e-12));
-    for (std::size_t t = 0; t < robot.triangleCount(); ++t)
-        robotTriangleReach_.push_back(
-            std::max({reach(robot.corner(t, 0)), reach(robot.corner(t, 1)), reach(robot.corner(t, 2))}) *
+        robotNodeReach_.push_back(
+            (turnReach(VolumeTraits<Volume>::center(node.volume), scene_.turnsAboutRobotZ) + node.radius) *
             (1.0 + 1e-12));
+    robotTriangleReach_ = triangleTurnReaches(*scene_.robot, scene_.turnsAboutRobotZ);
     if (pieceStage_)
     {
         robotPieces_ = decomposeLeaves(robotTree_);

@@ -4,8 +4,10 @@
 
 #include "hybridcd/geometry/triangle_mesh.h"
 
+#include <algorithm>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace hcd
 {
@@ -29,4 +31,32 @@ struct CollisionScene
     /// gain most: a point high above the ground plane moves no farther for its height.
     bool turnsAboutRobotZ = false;
 };
+
+/// How far robot point p (robot frame) lies from what a scene's motions turn the robot about: its
+/// z axis (CollisionScene::turnsAboutRobotZ) or its origin. A turn by an angle moves p at most
+/// the angle times this.
+inline double turnReach(const Vec3 &p, bool turnsAboutRobotZ)
+{
+    return turnsAboutRobotZ ? p.head<2>().norm() : p.norm();
+}
+
+/// The largest turnReach over the robot's vertices: radiusAboutZAxis() or radiusAboutOrigin().
+inline double robotTurnRadius(const TriangleMesh &robot, bool turnsAboutRobotZ)
+{
+    return turnsAboutRobotZ ? robot.radiusAboutZAxis() : robot.radiusAboutOrigin();
+}
+
+/// Per robot triangle, the largest turnReach of its corners, grown by 1e-12 relative for rounding
+/// (for swept proximity).
+inline std::vector<double> triangleTurnReaches(const TriangleMesh &robot, bool turnsAboutRobotZ)
+{
+    std::vector<double> reaches;
+    reaches.reserve(robot.triangleCount());
+    for (std::size_t t = 0; t < robot.triangleCount(); ++t)
+        reaches.push_back(
+            std::max({turnReach(robot.corner(t, 0), turnsAboutRobotZ), turnReach(robot.corner(t, 1), turnsAboutRobotZ),
+                      turnReach(robot.corner(t, 2), turnsAboutRobotZ)}) *
+            (1.0 + 1e-12));
+    return reaches;
+}
 }  // namespace hcd

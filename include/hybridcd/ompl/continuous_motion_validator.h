@@ -46,8 +46,8 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator
 public:
     /// `robotRadius` bounds |p| over robot points p in the robot frame, or |(p.x, p.y)| when the
     /// checker's scene turns about the robot's z axis (CollisionScene::turnsAboutRobotZ, SE(2));
-    /// `sceneScale` sets the smallest clearance certified (1e-7 of it). Queries go through `validity` so they are
-    /// counted.
+    /// `sceneScale` sets the smallest clearance certified (1e-7 of it). Queries go through
+    /// `validity` so they are counted.
     ContinuousMotionValidator(const ompl::base::SpaceInformationPtr &si,
                               std::shared_ptr<const StateValidityChecker> validity, double robotRadius,
                               double sceneScale);

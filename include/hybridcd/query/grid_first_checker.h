@@ -131,7 +131,7 @@ private:
     double robotReach_ = 0.0;  ///< max |vertex| of the robot (robot frame)
     /// Swept queries' radial slack counts from the robot's z axis (CollisionScene::turnsAboutRobotZ).
     bool turnsAboutRobotZ_ = false;
-    double robotAxisReach_ = 0.0;  ///< max |(x, y)| of a robot vertex (robot frame)
+    double robotTurnReach_ = 0.0;  ///< robotTurnRadius of the robot: how far a turn moves a point per radian
     std::vector<CoverSphere> cover_;
     ClearanceGrid grid_;
     ClearanceGrid robotGrid_;  ///< the robot's own grid (robot frame), with inside labels; closed robots only
