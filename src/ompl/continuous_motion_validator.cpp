@@ -236,32 +236,40 @@ bool ContinuousMotionValidator::checkMotion(const ompl::base::State *s1, const o
                                             std::pair<ompl::base::State *, double> &lastValid) const
 {
     const StateValidityChecker::Timing timing = validity_->timing();
-    return finish(verdictThenBracket(s1, s2, checkStart_), s1, s2, lastValid.first, &lastValid.second);
+    return finish(verdictThenBracket(s1, s2, checkStart_, unwantedBelow_.load(std::memory_order_relaxed)), s1, s2,
+                  lastValid.first, &lastValid.second);
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::checkMotionDetailed(const ompl::base::State *s1,
                                                                                  const ompl::base::State *s2) const
 {
     const StateValidityChecker::Timing timing = validity_->timing();
-    const Report report = verdictThenBracket(s1, s2, /*testStart=*/true);
+    const Report report = verdictThenBracket(s1, s2, /*testStart=*/true, /*unwantedBelow=*/0.0);
     finish(report, s1, s2, nullptr, nullptr);
     return report;
 }
 
 ContinuousMotionValidator::Report ContinuousMotionValidator::verdictThenBracket(const ompl::base::State *s1,
                                                                                 const ompl::base::State *s2,
-                                                                                bool testStart) const
+                                                                                bool testStart,
+                                                                                double unwantedBelow) const
 {
     // Most motions a planner asks about are free, and proving that costs the same whether or not
     // the first contact is wanted: the verdict first, and the first contact searched for only on a
     // motion the verdict did not prove free.
-    const Report quick = verdict(s1, s2, testStart);
+    Report quick = verdict(s1, s2, testStart);
     if (quick.free)
         return quick;
+    if (quick.contactFound && quick.contactAt <= unwantedBelow)
+    {
+        quick.blocked = false;  // the bracket is left open: [0, 0] is all that is proven free
+        quick.lastFree = 0.0;
+        return quick;
+    }
     if (translations_ && quick.contactFound && quick.contactAt > 0.0)
         if (const std::optional<Report> exact = bracketTranslation(s1, s2, quick.contactAt))
             return *exact;
-    return certify(s1, s2, quick.contactFound ? quick.contactAt : 2.0);
+    return certify(s1, s2, quick.contactFound ? quick.contactAt : 2.0, unwantedBelow);
 }
 
 std::optional<ContinuousMotionValidator::Report>
@@ -323,8 +331,9 @@ bool ContinuousMotionValidator::finish(const Report &report, const ompl::base::S
     return report.free;
 }
 
-ContinuousMotionValidator::Report
-ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact) const
+ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl::base::State *s1,
+                                                                     const ompl::base::State *s2, double knownContact,
+                                                                     double unwantedBelow) const
 {
     ompl::base::SpaceInformation *si = si_;
     const ompl::base::StateSpacePtr &space = si->getStateSpace();
@@ -399,7 +408,8 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
     // intervals than one that runs up to the contact (bench/README.md, section 3, "lastValid:
     // the contact narrowed first"). Returns the colliding state nearest the free one.
     const auto narrow = [&](double freeAt, double collidingAt) {
-        while (collidingAt - freeAt > kNarrowing * tolerance && queries < kMaxRefinementQueries)
+        while (collidingAt - freeAt > kNarrowing * tolerance && collidingAt > unwantedBelow &&
+               queries < kMaxRefinementQueries)
         {
             const double mid = 0.5 * (freeAt + collidingAt);
             if (!(freeAt < mid && mid < collidingAt))
@@ -435,7 +445,12 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
         pending.push_back({target * double(k - 1) / segments, k == segments ? target : target * double(k) / segments});
     }
     bool refused = false;
-    while (!pending.empty() && !(contactAt <= 1.0 && contactAt - certified <= tolerance))
+    // A contact at or before `unwantedBelow` ends the search too: the caller throws away any last
+    // valid state there.
+    const auto settled = [&] {
+        return contactAt <= 1.0 && (contactAt - certified <= tolerance || contactAt <= unwantedBelow);
+    };
+    while (!pending.empty() && !settled())
     {
         const MotionInterval iv = pending.back();
         pending.pop_back();
@@ -459,7 +474,7 @@ ContinuousMotionValidator::certify(const ompl::base::State *s1, const ompl::base
         {
             // An earlier contact: narrowed like the first, between the free prefix and it.
             contactAt = narrow(certified, mid);
-            if (contactAt - certified <= tolerance)
+            if (settled())
                 break;
             // The interval's front covers [certified, contactAt] (intervals are taken in order).
             pending.clear();

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/planners/planner_catalogue.h"
 
+#include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/planners/pose_nearest_neighbors.h"
 
 #include <ompl/control/planners/est/EST.h>
@@ -200,6 +201,35 @@ public:
     bool searchesPoses() const override { return isPoseSearch(this->nn_); }
 };
 
+// KPIECE1 and BKPIECE1 keep a blocked motion's last valid state only beyond their
+// min_valid_path_fraction. For the run, a continuous validator is told so, and then does not
+// bracket a contact it finds before that fraction: the planner would throw the bracket away
+// (ContinuousMotionValidator::setUnwantedLastValidBelow), so the tree is the same and cheaper.
+template <typename Kpiece>
+class WithUnwantedLastValid : public Kpiece
+{
+public:
+    explicit WithUnwantedLastValid(const ompl::base::SpaceInformationPtr &si) : Kpiece(si) {}
+
+    ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override
+    {
+        const std::shared_ptr<ContinuousMotionValidator> validator =
+            std::dynamic_pointer_cast<ContinuousMotionValidator>(this->si_->getMotionValidator());
+        if (!validator)
+            return Kpiece::solve(ptc);
+        // Another planner on the same space information gets the setting it had (bench runs
+        // several in turn), also when solve throws.
+        struct Restore
+        {
+            ContinuousMotionValidator &validator;
+            double before;
+            ~Restore() { validator.setUnwantedLastValidBelow(before); }
+        } restore{*validator, validator->unwantedLastValidBelow()};
+        validator->setUnwantedLastValidBelow(this->getMinValidPathFraction());
+        return Kpiece::solve(ptc);
+    }
+};
+
 // A std::map keeps the names sorted, so plannerNames() needs no extra sort.
 const std::map<std::string, Factory> &catalogue()
 {
@@ -212,12 +242,12 @@ const std::map<std::string, Factory> &catalogue()
         {"birlrt", make<og::BiRLRT>()},
         {"bitrrt", make<og::BiTRRT>()},
         {"bitstar", make<WithThreadSafeProgress<og::BITstar>>()},
-        {"bkpiece", make<og::BKPIECE1>()},
+        {"bkpiece", make<WithUnwantedLastValid<og::BKPIECE1>>()},
         {"cforest", make<og::CForest>()},
         {"est", make<og::EST>()},
         {"fmt", make<og::FMT>()},
         {"informedrrtstar", make<og::InformedRRTstar>()},
-        {"kpiece", make<og::KPIECE1>()},
+        {"kpiece", make<WithUnwantedLastValid<og::KPIECE1>>()},
         {"lazyprm", make<og::LazyPRM>()},
         {"lazyprmstar", make<og::LazyPRMstar>()},
         {"lazyrrt", make<og::LazyRRT>()},

@@ -5,11 +5,16 @@
 
 #include "hybridcd/ompl/continuous_motion_validator.h"
 #include "hybridcd/ompl/planning_problem.h"
+#include "hybridcd/planners/planner_catalogue.h"
 #include "hybridcd/query/checker_catalogue.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/PlannerData.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/geometric/planners/kpiece/BKPIECE1.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
 
@@ -351,6 +356,121 @@ TEST(MotionValidator, FirstContactIsBracketedToOneSegmentAsPlannersAskIt)
     expectFirstContactsBracketed(cubicles, "auto", 1e-3, true, 0.2);
     HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
     expectFirstContactsBracketed(maze, "auto", 1e-3, true, 0.2);
+}
+
+// Planners that discard a last valid state at or before a fraction of the motion (KPIECE's
+// min_valid_path_fraction) tell the validator so, and a contact it finds before that fraction is
+// left unbracketed: what such a planner keeps is the same as with the whole bracket, and what it
+// is handed is still proven free (brute force along it).
+TEST(MotionValidator, ContactsBeforeAnUnwantedFractionAreLeftUnbracketed)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(cubicles, "3D/cubicles.cfg");
+    HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
+    for (const std::string &cfg : {cubicles, maze})
+    {
+        SCOPED_TRACE(cfg);
+        const LoadedProblem problem = loadProblem(cfg);
+        const bool planar = problem.config.planar;
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker("auto", problem.scene));
+        planning.setup->setup();
+        const auto si = planning.setup->getSpaceInformation();
+        auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+        EXPECT_EQ(validator.unwantedLastValidBelow(), 0.0);
+        const auto reference = makeChecker("bruteforce", problem.scene);
+        auto sampler = si->allocStateSampler();
+        ob::ScopedState<> a(si), b(si), s(si), whole(si), cut(si);
+        int blocked = 0, kept = 0, unbracketed = 0;
+        for (int attempt = 0; attempt < 4000 && blocked < 80; ++attempt)
+        {
+            sampler->sampleUniform(a.get());
+            if (!si->isValid(a.get()))
+                continue;
+            sampler->sampleUniformNear(b.get(), a.get(), 0.2 * si->getMaximumExtent());
+            si->enforceBounds(b.get());
+            const double unwanted = attempt % 2 ? 0.2 : 0.5;
+            validator.setUnwantedLastValidBelow(0.0);
+            std::pair<ob::State *, double> bracketed{whole.get(), -1.0};
+            const bool free = validator.checkMotion(a.get(), b.get(), bracketed);
+            validator.setUnwantedLastValidBelow(unwanted);
+            std::pair<ob::State *, double> left{cut.get(), -1.0};
+            ASSERT_EQ(validator.checkMotion(a.get(), b.get(), left), free);
+            if (free)
+                continue;
+            ++blocked;
+            EXPECT_EQ(bracketed.second > unwanted, left.second > unwanted);
+            if (bracketed.second > unwanted)
+            {
+                ++kept;
+                EXPECT_EQ(left.second, bracketed.second);
+            }
+            else
+            {
+                EXPECT_LE(left.second, unwanted);
+                unbracketed += left.second < bracketed.second;
+            }
+            si->getStateSpace()->interpolate(a.get(), b.get(), left.second, s.get());
+            EXPECT_LT(si->distance(s.get(), cut.get()), 1e-9);
+            for (int k = 0; k <= 200; ++k)
+            {
+                si->getStateSpace()->interpolate(a.get(), b.get(), left.second * k / 200, s.get());
+                ASSERT_FALSE(reference->collides(poseOfState(s.get(), planar))) << left.second * k / 200;
+            }
+        }
+        validator.setUnwantedLastValidBelow(0.0);
+        EXPECT_GE(blocked, 80);
+        EXPECT_GT(kept, 0);
+        EXPECT_GT(unbracketed, 0);
+    }
+}
+
+// KPIECE1 and BKPIECE1 from the catalogue tell the validator their min_valid_path_fraction for the
+// run: with the same seed they plan the same tree and path as OMPL's own classes, which leave it at
+// 0, and the setting is back at 0 afterwards.
+TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbracketed)
+{
+    HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
+    const LoadedProblem problem = loadProblem(maze);
+    PlanningProblem planning = makePlanningProblem(problem, makeChecker("auto", problem.scene));
+    planning.setup->setup();
+    const auto si = planning.setup->getSpaceInformation();
+    const auto &validator = dynamic_cast<const ContinuousMotionValidator &>(*si->getMotionValidator());
+    for (const char *name : {"kpiece", "bkpiece"})
+    {
+        SCOPED_TRACE(name);
+        std::vector<std::vector<double>> paths[2];
+        std::size_t vertices[2] = {0, 0};
+        for (int run = 0; run < 2; ++run)
+        {
+            const auto level = ompl::msg::getLogLevel();
+            ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+            ompl::RNG::setSeed(std::uint_fast32_t(test::seeded(5)));
+            planning.setup->clear();
+            ob::PlannerPtr planner;
+            if (run == 0)
+                planner = makePlanner({name, "", {}}, si);
+            else if (std::string(name) == "kpiece")
+                planner = std::make_shared<ompl::geometric::KPIECE1>(si);
+            else
+                planner = std::make_shared<ompl::geometric::BKPIECE1>(si);
+            planning.setup->setPlanner(planner);
+            const ob::PlannerStatus status = planning.setup->solve(ob::timedPlannerTerminationCondition(60.0));
+            ompl::msg::setLogLevel(level);
+            ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION);
+            EXPECT_EQ(validator.unwantedLastValidBelow(), 0.0);
+            ob::PlannerData data(si);
+            planning.setup->getPlannerData(data);
+            vertices[run] = data.numVertices();
+            for (const ob::State *state : planning.setup->getSolutionPath().getStates())
+            {
+                std::vector<double> values;
+                si->getStateSpace()->copyToReals(values, state);
+                paths[run].push_back(values);
+            }
+        }
+        EXPECT_GT(vertices[0], 20u);
+        EXPECT_EQ(vertices[0], vertices[1]);
+        EXPECT_EQ(paths[0], paths[1]);
+    }
 }
 
 // A tall robot on a planar problem (SE(2), its turns counted from its z axis) crossing a thin wall

@@ -108,6 +108,15 @@ public:
     /// included; untested, it is refused after bisecting down to s1 rather than at once.
     void setStartChecked(bool check) { checkStart_ = check; }
 
+    /// Planners that throw away a last valid state at or before a fraction of the motion (KPIECE's
+    /// min_valid_path_fraction: 0.2 for KPIECE1, 0.5 for BKPIECE1) need no bracket there. Once a
+    /// state at or before `fraction` is found colliding, checkMotion with a last valid state stops
+    /// searching: lastValid.second is then the proven-free prefix found so far (0 at least, s1),
+    /// below that colliding state and so at or below `fraction`, which such a planner discards as
+    /// it would the exact one. 0 (the default) always brackets. checkMotionDetailed always does.
+    void setUnwantedLastValidBelow(double fraction) { unwantedBelow_.store(std::clamp(fraction, 0.0, 1.0)); }
+    double unwantedLastValidBelow() const { return unwantedBelow_.load(); }
+
     /// Whether s2 must satisfy the state-space bounds (default true, as OMPL's validators do).
     void setApplyBounds(bool apply) { applyBounds_ = apply; }
 
@@ -134,7 +143,10 @@ private:
     /// `knownContact`, when at most 1, is a fraction where the robot is known to collide: the
     /// search is then confined to the motion before it.
     /// s1 is always tested here.
-    Report certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact = 2.0) const;
+    /// `unwantedBelow`: the search also stops once a colliding state at or before it is known
+    /// (setUnwantedLastValidBelow), with the bracket left open.
+    Report certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact = 2.0,
+                   double unwantedBelow = 0.0) const;
     /// The verdict alone (no bracket): raked collision checks, then certification of what is left.
     Report verdict(const ompl::base::State *s1, const ompl::base::State *s2, bool testStart) const;
     /// The bracket of a blocked pure translation from its exact first contact, searched for on
@@ -143,7 +155,8 @@ private:
     std::optional<Report> bracketTranslation(const ompl::base::State *s1, const ompl::base::State *s2,
                                              double knownContact) const;
     /// verdict(), then certify() when the motion was not proven free.
-    Report verdictThenBracket(const ompl::base::State *s1, const ompl::base::State *s2, bool testStart) const;
+    Report verdictThenBracket(const ompl::base::State *s1, const ompl::base::State *s2, bool testStart,
+                              double unwantedBelow) const;
     bool finish(const Report &report, const ompl::base::State *s1, const ompl::base::State *s2,
                 ompl::base::State *lastValidState, double *lastValidFraction) const;
 
@@ -156,6 +169,8 @@ private:
     bool checkStart_ = false;
     bool applyBounds_ = true;
     bool useFronts_ = true;
+    // Written by a planner's set-up while no query runs, read by every query: atomic all the same.
+    std::atomic<double> unwantedBelow_{0.0};
     mutable std::atomic<std::uint64_t> validCount_{0}, invalidCount_{0}, translationBrackets_{0}, listedFronts_{0},
         wideSweeps_{0};
 };
