@@ -201,7 +201,7 @@ public:
     bool searchesPoses() const override { return isPoseSearch(this->nn_); }
 };
 
-// KPIECE1 and BKPIECE1 keep a blocked motion's last valid state only beyond their
+// KPIECE1, BKPIECE1 and LBKPIECE1 keep a blocked motion's last valid state only beyond their
 // min_valid_path_fraction. For the run, a continuous validator is told so, and then does not
 // bracket a contact it finds before that fraction: the planner would throw the bracket away
 // (ContinuousMotionValidator::setUnwantedLastValidBelow), so the tree is the same and cheaper.
@@ -251,7 +251,7 @@ const std::map<std::string, Factory> &catalogue()
         {"lazyprm", make<og::LazyPRM>()},
         {"lazyprmstar", make<og::LazyPRMstar>()},
         {"lazyrrt", make<og::LazyRRT>()},
-        {"lbkpiece", make<og::LBKPIECE1>()},
+        {"lbkpiece", make<WithUnwantedLastValid<og::LBKPIECE1>>()},
         {"lbtrrt", make<og::LBTRRT>()},
         {"pdst", make<og::PDST>()},
         {"prm", makeWithPoseSearch<og::PRM, PrmWithPoseNeighbors<og::PRM>>()},

@@ -14,6 +14,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/planners/kpiece/BKPIECE1.h>
 #include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/kpiece/LBKPIECE1.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
@@ -423,9 +424,9 @@ TEST(MotionValidator, ContactsBeforeAnUnwantedFractionAreLeftUnbracketed)
     }
 }
 
-// KPIECE1 and BKPIECE1 from the catalogue tell the validator their min_valid_path_fraction for the
-// run: with the same seed they plan the same tree and path as OMPL's own classes, which leave it at
-// 0, and the setting is back at 0 afterwards.
+// KPIECE1, BKPIECE1 and LBKPIECE1 from the catalogue tell the validator their
+// min_valid_path_fraction for the run: with the same seed they plan the same tree and path as
+// OMPL's own classes, which leave it at 0, and the setting is back at 0 afterwards.
 TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbracketed)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
@@ -434,7 +435,7 @@ TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbrac
     planning.setup->setup();
     const auto si = planning.setup->getSpaceInformation();
     const auto &validator = dynamic_cast<const ContinuousMotionValidator &>(*si->getMotionValidator());
-    for (const char *name : {"kpiece", "bkpiece"})
+    for (const std::string name : {"kpiece", "bkpiece", "lbkpiece"})
     {
         SCOPED_TRACE(name);
         std::vector<std::vector<double>> paths[2];
@@ -448,10 +449,12 @@ TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbrac
             ob::PlannerPtr planner;
             if (run == 0)
                 planner = makePlanner({name, "", {}}, si);
-            else if (std::string(name) == "kpiece")
+            else if (name == "kpiece")
                 planner = std::make_shared<ompl::geometric::KPIECE1>(si);
-            else
+            else if (name == "bkpiece")
                 planner = std::make_shared<ompl::geometric::BKPIECE1>(si);
+            else
+                planner = std::make_shared<ompl::geometric::LBKPIECE1>(si);
             planning.setup->setPlanner(planner);
             const ob::PlannerStatus status = planning.setup->solve(ob::timedPlannerTerminationCondition(60.0));
             ompl::msg::setLogLevel(level);

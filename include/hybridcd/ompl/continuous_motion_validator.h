@@ -109,7 +109,7 @@ public:
     void setStartChecked(bool check) { checkStart_ = check; }
 
     /// Planners that throw away a last valid state at or before a fraction of the motion (KPIECE's
-    /// min_valid_path_fraction: 0.2 for KPIECE1, 0.5 for BKPIECE1) need no bracket there. Once a
+    /// min_valid_path_fraction: 0.2 for KPIECE1, 0.5 for BKPIECE1 and LBKPIECE1) need no bracket there. Once a
     /// state at or before `fraction` is found colliding, checkMotion with a last valid state stops
     /// searching: lastValid.second is then the proven-free prefix found so far (0 at least, s1),
     /// below that colliding state and so at or below `fraction`, which such a planner discards as
