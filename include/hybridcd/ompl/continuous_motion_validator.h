@@ -109,11 +109,13 @@ public:
     void setStartChecked(bool check) { checkStart_ = check; }
 
     /// Planners that throw away a last valid state at or before a fraction of the motion (KPIECE's
-    /// min_valid_path_fraction: 0.2 for KPIECE1, 0.5 for BKPIECE1 and LBKPIECE1) need no bracket there. Once a
-    /// state at or before `fraction` is found colliding, checkMotion with a last valid state stops
-    /// searching: lastValid.second is then the proven-free prefix found so far (0 at least, s1),
-    /// below that colliding state and so at or below `fraction`, which such a planner discards as
-    /// it would the exact one. 0 (the default) always brackets. checkMotionDetailed always does.
+    /// min_valid_path_fraction: 0.2 for KPIECE1, 0.5 for BKPIECE1 and LBKPIECE1) need no bracket
+    /// there. Once a state at or before `fraction` is found colliding, checkMotion with a last
+    /// valid state stops searching: lastValid.second is then the proven-free prefix found so far
+    /// (0 at least, s1), below that colliding state and so at or below `fraction`, which such a
+    /// planner discards as it would the exact one. 0 (the default) always brackets.
+    /// checkMotionDetailed always does. The planner catalogue's kpiece, bkpiece and lbkpiece set
+    /// it for their run and restore it after.
     void setUnwantedLastValidBelow(double fraction) { unwantedBelow_.store(std::clamp(fraction, 0.0, 1.0)); }
     double unwantedLastValidBelow() const { return unwantedBelow_.load(); }
 
