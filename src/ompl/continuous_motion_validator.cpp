@@ -260,9 +260,11 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdictThenBracket(
     Report quick = verdict(s1, s2, testStart);
     if (quick.free)
         return quick;
-    if (quick.contactFound && quick.contactAt <= unwantedBelow)
+    if (unwantedBelow > 0.0 && quick.contactFound && quick.contactAt <= unwantedBelow)
     {
-        quick.blocked = false;  // the bracket is left open: [0, 0] is all that is proven free
+        // The bracket is left open: the last valid state is s1 at 0, which the verdict tested or,
+        // as checkMotion's contract has it, took as valid.
+        quick.blocked = false;
         quick.lastFree = 0.0;
         return quick;
     }

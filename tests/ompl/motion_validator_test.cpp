@@ -19,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -417,10 +418,37 @@ TEST(MotionValidator, ContactsBeforeAnUnwantedFractionAreLeftUnbracketed)
                 ASSERT_FALSE(reference->collides(poseOfState(s.get(), planar))) << left.second * k / 200;
             }
         }
-        validator.setUnwantedLastValidBelow(0.0);
         EXPECT_GE(blocked, 80);
         EXPECT_GT(kept, 0);
         EXPECT_GT(unbracketed, 0);
+        // The detailed check always brackets: from a colliding s1, blocked at s1 itself, whatever
+        // the setting (0 included).
+        int collidingStarts = 0;
+        for (int attempt = 0; attempt < 2000 && collidingStarts < 10; ++attempt)
+        {
+            sampler->sampleUniform(a.get());
+            if (si->isValid(a.get()))
+                continue;
+            ++collidingStarts;
+            sampler->sampleUniformNear(b.get(), a.get(), 0.2 * si->getMaximumExtent());
+            si->enforceBounds(b.get());
+            for (const double unwanted : {0.0, 0.5})
+            {
+                validator.setUnwantedLastValidBelow(unwanted);
+                const auto report = validator.checkMotionDetailed(a.get(), b.get());
+                EXPECT_FALSE(report.free);
+                EXPECT_TRUE(report.blocked);
+                EXPECT_TRUE(report.contactFound);
+                EXPECT_EQ(report.lastFree, 0.0);
+                EXPECT_EQ(report.blockedAt, 0.0);
+            }
+        }
+        EXPECT_EQ(collidingStarts, 10);
+        validator.setUnwantedLastValidBelow(std::numeric_limits<double>::quiet_NaN());
+        EXPECT_EQ(validator.unwantedLastValidBelow(), 0.0);
+        validator.setUnwantedLastValidBelow(7.0);
+        EXPECT_EQ(validator.unwantedLastValidBelow(), 1.0);
+        validator.setUnwantedLastValidBelow(0.0);
     }
 }
 
@@ -447,8 +475,12 @@ TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbrac
             ompl::RNG::setSeed(std::uint_fast32_t(test::seeded(5)));
             planning.setup->clear();
             ob::PlannerPtr planner;
+            double minimumFraction = 0.0;
             if (run == 0)
+            {
                 planner = makePlanner({name, "", {}}, si);
+                minimumFraction = std::stod(planner->params().getParam("min_valid_path_fraction")->getValue());
+            }
             else if (name == "kpiece")
                 planner = std::make_shared<ompl::geometric::KPIECE1>(si);
             else if (name == "bkpiece")
@@ -456,9 +488,18 @@ TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbrac
             else
                 planner = std::make_shared<ompl::geometric::LBKPIECE1>(si);
             planning.setup->setPlanner(planner);
-            const ob::PlannerStatus status = planning.setup->solve(ob::timedPlannerTerminationCondition(60.0));
+            // The setting as the planner runs: its fraction from the catalogue, 0 from OMPL's class.
+            double seen = 0.0;
+            const ob::PlannerTerminationCondition watch([&] {
+                seen = std::max(seen, validator.unwantedLastValidBelow());
+                return false;
+            });
+            const ob::PlannerStatus status = planning.setup->solve(
+                ob::plannerOrTerminationCondition(watch, ob::timedPlannerTerminationCondition(60.0)));
             ompl::msg::setLogLevel(level);
             ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION);
+            EXPECT_GT(seen, run == 0 ? 0.1 : -1.0);
+            EXPECT_EQ(seen, minimumFraction);
             EXPECT_EQ(validator.unwantedLastValidBelow(), 0.0);
             ob::PlannerData data(si);
             planning.setup->getPlannerData(data);

@@ -35,6 +35,7 @@
 
 #include <ompl/base/MotionValidator.h>
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
 #include <optional>
@@ -59,7 +60,8 @@ public:
     /// is blocked (a contact or a near contact, see Report) within the contact tolerance after it.
     /// The first contact's search tests s1 itself whatever setStartChecked says (the exact first
     /// contact of a translation tests the last valid state instead): it anchors the proven-free
-    /// prefix.
+    /// prefix. A contact at or before setUnwantedLastValidBelow's fraction ends the search
+    /// earlier, with the bracket left open (see there).
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
 
@@ -113,10 +115,16 @@ public:
     /// there. Once a state at or before `fraction` is found colliding, checkMotion with a last
     /// valid state stops searching: lastValid.second is then the proven-free prefix found so far
     /// (0 at least, s1), below that colliding state and so at or below `fraction`, which such a
-    /// planner discards as it would the exact one. 0 (the default) always brackets.
+    /// planner discards as it would the exact one. When the verdict's own contact lies there, that
+    /// prefix is s1 at 0, untested unless setStartChecked (taken as valid, as checkMotion's
+    /// contract has it). 0 (the default, and for a value that is not a number) always brackets;
     /// checkMotionDetailed always does. The planner catalogue's kpiece, bkpiece and lbkpiece set
-    /// it for their run and restore it after.
-    void setUnwantedLastValidBelow(double fraction) { unwantedBelow_.store(std::clamp(fraction, 0.0, 1.0)); }
+    /// it for their run and restore it after. It holds for every caller of this validator: two
+    /// planners solving at once on one space information share it.
+    void setUnwantedLastValidBelow(double fraction)
+    {
+        unwantedBelow_.store(fraction > 0.0 ? std::min(fraction, 1.0) : 0.0);  // NaN: 0
+    }
     double unwantedLastValidBelow() const { return unwantedBelow_.load(); }
 
     /// Whether s2 must satisfy the state-space bounds (default true, as OMPL's validators do).
