@@ -201,8 +201,8 @@ public:
     bool searchesPoses() const override { return isPoseSearch(this->nn_); }
 };
 
-// KPIECE1, BKPIECE1 and LBKPIECE1 keep a blocked motion's last valid state only beyond their
-// min_valid_path_fraction. For the run, a continuous validator is told so, and then does not
+// KPIECE1, BKPIECE1, LBKPIECE1 and STRIDE keep a blocked motion's last valid state only beyond
+// their min_valid_path_fraction. For the run, a continuous validator is told so, and then does not
 // bracket a contact it finds before that fraction: the planner would throw the bracket away
 // (ContinuousMotionValidator::setUnwantedLastValidBelow), so the tree is the same and cheaper.
 template <typename Kpiece>
@@ -276,7 +276,7 @@ const std::map<std::string, Factory> &catalogue()
         {"spars", make<og::SPARS>()},
         {"spars2", make<og::SPARStwo>()},
         {"sst", make<og::SST>()},
-        {"stride", make<og::STRIDE>()},
+        {"stride", make<WithUnwantedLastValid<og::STRIDE>>()},
         {"trrt", make<og::TRRT>()},
     };
     return table;

@@ -15,6 +15,7 @@
 #include <ompl/geometric/planners/kpiece/BKPIECE1.h>
 #include <ompl/geometric/planners/kpiece/KPIECE1.h>
 #include <ompl/geometric/planners/kpiece/LBKPIECE1.h>
+#include <ompl/geometric/planners/stride/STRIDE.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
@@ -452,9 +453,9 @@ TEST(MotionValidator, ContactsBeforeAnUnwantedFractionAreLeftUnbracketed)
     }
 }
 
-// KPIECE1, BKPIECE1 and LBKPIECE1 from the catalogue tell the validator their
-// min_valid_path_fraction for the run: with the same seed they plan the same tree and path as
-// OMPL's own classes, which leave it at 0, and the setting is back at 0 afterwards.
+// KPIECE1, BKPIECE1, LBKPIECE1 and STRIDE from the catalogue tell the validator their
+// min_valid_path_fraction for the run, and the setting is back at 0 afterwards; with the same
+// seed the three KPIECEs plan the same tree and path as OMPL's own classes, which leave it at 0.
 TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbracketed)
 {
     HYBRIDCD_REQUIRE_OMPLAPP(maze, "2D/Maze_planar.cfg");
@@ -463,7 +464,7 @@ TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbrac
     planning.setup->setup();
     const auto si = planning.setup->getSpaceInformation();
     const auto &validator = dynamic_cast<const ContinuousMotionValidator &>(*si->getMotionValidator());
-    for (const std::string name : {"kpiece", "bkpiece", "lbkpiece"})
+    for (const std::string name : {"kpiece", "bkpiece", "lbkpiece", "stride"})
     {
         SCOPED_TRACE(name);
         std::vector<std::vector<double>> paths[2];
@@ -485,8 +486,10 @@ TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbrac
                 planner = std::make_shared<ompl::geometric::KPIECE1>(si);
             else if (name == "bkpiece")
                 planner = std::make_shared<ompl::geometric::BKPIECE1>(si);
-            else
+            else if (name == "lbkpiece")
                 planner = std::make_shared<ompl::geometric::LBKPIECE1>(si);
+            else
+                planner = std::make_shared<ompl::geometric::STRIDE>(si);
             planning.setup->setPlanner(planner);
             // The setting as the planner runs: its fraction from the catalogue, 0 from OMPL's class.
             double seen = 0.0;
@@ -512,6 +515,11 @@ TEST(MotionValidator, KpiecePlansTheSameWithItsUnwantedLastValidStatesLeftUnbrac
             }
         }
         EXPECT_GT(vertices[0], 20u);
+        // STRIDE plans differently from one run to the next here even with OMPL's class in both
+        // runs (its structures draw seeds of their own as it is cleared and set up again): only the
+        // setting is checked for it; what it keeps is checked motion by motion above.
+        if (name == "stride")
+            continue;
         EXPECT_EQ(vertices[0], vertices[1]);
         EXPECT_EQ(paths[0], paths[1]);
     }

@@ -110,17 +110,17 @@ public:
     /// included; untested, it is refused after bisecting down to s1 rather than at once.
     void setStartChecked(bool check) { checkStart_ = check; }
 
-    /// Planners that throw away a last valid state at or before a fraction of the motion (KPIECE's
-    /// min_valid_path_fraction: 0.2 for KPIECE1, 0.5 for BKPIECE1 and LBKPIECE1) need no bracket
-    /// there. Once a state at or before `fraction` is found colliding, checkMotion with a last
-    /// valid state stops searching: lastValid.second is then the proven-free prefix found so far
-    /// (0 at least, s1), below that colliding state and so at or below `fraction`, which such a
+    /// Planners that throw away a last valid state at or before a fraction of the motion
+    /// (min_valid_path_fraction: 0.2 for KPIECE1 and STRIDE, 0.5 for BKPIECE1 and LBKPIECE1) need
+    /// no bracket there. Once a state at or before `fraction` is found colliding, checkMotion with
+    /// a last valid state stops searching: lastValid.second is then the proven-free prefix found so
+    /// far (0 at least, s1), below that colliding state and so at or below `fraction`, which such a
     /// planner discards as it would the exact one. When the verdict's own contact lies there, that
     /// prefix is s1 at 0, untested unless setStartChecked (taken as valid, as checkMotion's
     /// contract has it). 0 (the default, and for a value that is not a number) always brackets;
-    /// checkMotionDetailed always does. The planner catalogue's kpiece, bkpiece and lbkpiece set
-    /// it for their run and restore it after. It holds for every caller of this validator: two
-    /// planners solving at once on one space information share it.
+    /// checkMotionDetailed always does. The planner catalogue's kpiece, bkpiece, lbkpiece and
+    /// stride set it for their run and restore it after. It holds for every caller of this
+    /// validator: two planners solving at once on one space information share it.
     void setUnwantedLastValidBelow(double fraction)
     {
         unwantedBelow_.store(fraction > 0.0 ? std::min(fraction, 1.0) : 0.0);  // NaN: 0
