@@ -51,46 +51,22 @@ public:
     double lowerBound(const PoseCoordinates &p, const double *low, const double *high,
                       double enough = std::numeric_limits<double>::infinity()) const
     {
-        const auto &v = p.values;
-        double squared = 0.0;
-        for (int i = 0; i < (planar_ ? 2 : 3); ++i)
-        {
-            const double g = intervalGap(v[i], low[i], high[i]);
-            squared += g * g;
-        }
-        // Far enough by the translation alone, compared in squares (no root): a value just above
-        // `enough` is then still below the distance. Only where the squares neither underflow nor
-        // overflow, and `enough` is positive (a bound of `enough` itself would not rule out).
-        if (enough > 1e-150 && enough < 1e150 &&
-            translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack))
-            return enough * (1.0 + 0.1 * kSquaredComparisonSlack);
-        const double translation = translationWeight_ * std::sqrt(squared);
-        if (!p.rotationBoundable || translation >= enough)
-            return translation * (1.0 - kWeightedSumSlack);
-        double angle = 0.0;
-        if (planar_)
-        {
-            if (v[2] < low[2] || v[2] > high[2])
-                angle = std::min(wrappedYawDifference(v[2], low[2]), wrappedYawDifference(v[2], high[2])) -
-                        kWrappedYawSlack;
-        }
-        else
-        {
-            // For unit quaternions the chord min(|q1 - q2|, |q1 + q2|) = 2 sin(angle / 2) is at
-            // most the angle, and the box's nearest point to q (or to -q) is at most the chord.
-            double plus = 0.0;
-            double minus = 0.0;
-            for (int i = 3; i < 7; ++i)
-            {
-                const double g = intervalGap(v[i], low[i], high[i]);
-                const double h = intervalGap(-v[i], low[i], high[i]);
-                plus += g * g;
-                minus += h * h;
-            }
-            angle = std::sqrt(std::min(plus, minus)) - kChordSlack;
-        }
-        return (translation + rotationWeight_ * std::max(angle, 0.0)) * (1.0 - kWeightedSumSlack);
+        bool rotationLeftOut = false;
+        return bound<false>(p, low, high, enough, rotationLeftOut);
     }
+    /// lowerBound, or its translation's part alone (`rotationLeftOut` set) when even the largest
+    /// rotation part could not lift the bound to `enough`: a search that compares the bound with
+    /// `enough` then decides as with the whole bound, without the rotation's gaps and square root.
+    /// Before comparing such a bound with a lower bar, the search completes it with lowerBound.
+    double lowerBoundBelow(const PoseCoordinates &p, const double *low, const double *high, double enough,
+                           bool &rotationLeftOut) const
+    {
+        rotationLeftOut = false;
+        return bound<true>(p, low, high, enough, rotationLeftOut);
+    }
+    /// The most the rotation's part of a bound can add: the weight times the largest chord
+    /// between unit quaternions (sqrt(2), for q or -q), or the largest wrapped yaw (pi).
+    double largestRotationPart() const { return rotationWeight_ * (planar_ ? kPi : kSqrt2); }
     /// lowerBound(p, point, point) for each of `count` points (without its early return, which
     /// only changes values above `enough`), into bounds[0, count). p's rotation must be
     /// boundable. Branch-free, so that a leaf's poses are bounded side by side.
@@ -135,6 +111,62 @@ public:
     static constexpr double kPi = 3.14159265358979323846;
 
 private:
+    // lowerBound; with LeaveOutRotation, lowerBoundBelow.
+    template <bool LeaveOutRotation>
+    double bound(const PoseCoordinates &p, const double *low, const double *high, double enough,
+                 bool &rotationLeftOut) const
+    {
+        const auto &v = p.values;
+        double squared = 0.0;
+        for (int i = 0; i < (planar_ ? 2 : 3); ++i)
+        {
+            const double g = intervalGap(v[i], low[i], high[i]);
+            squared += g * g;
+        }
+        // Far enough by the translation alone, compared in squares (no root): a value just above
+        // `enough` is then still below the distance. Only where the squares neither underflow nor
+        // overflow, and `enough` is positive (a bound of `enough` itself would not rule out).
+        if (enough > 1e-150 && enough < 1e150 &&
+            translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack))
+            return enough * (1.0 + 0.1 * kSquaredComparisonSlack);
+        const double translation = translationWeight_ * std::sqrt(squared);
+        if (!p.rotationBoundable || translation >= enough)
+            return translation * (1.0 - kWeightedSumSlack);
+        if constexpr (LeaveOutRotation)
+        {
+            // Compared with slack, since largestRotationPart() is rounded too; a bound left
+            // lower than it could be costs only pruning, never an answer.
+            if ((translation + largestRotationPart()) * (1.0 + kSquaredComparisonSlack) < enough)
+            {
+                rotationLeftOut = true;
+                return translation * (1.0 - kWeightedSumSlack);
+            }
+        }
+        double angle = 0.0;
+        if (planar_)
+        {
+            if (v[2] < low[2] || v[2] > high[2])
+                angle = std::min(wrappedYawDifference(v[2], low[2]), wrappedYawDifference(v[2], high[2])) -
+                        kWrappedYawSlack;
+        }
+        else
+        {
+            // For unit quaternions the chord min(|q1 - q2|, |q1 + q2|) = 2 sin(angle / 2) is at
+            // most the angle, and the box's nearest point to q (or to -q) is at most the chord.
+            double plus = 0.0;
+            double minus = 0.0;
+            for (int i = 3; i < 7; ++i)
+            {
+                const double g = intervalGap(v[i], low[i], high[i]);
+                const double h = intervalGap(-v[i], low[i], high[i]);
+                plus += g * g;
+                minus += h * h;
+            }
+            angle = std::sqrt(std::min(plus, minus)) - kChordSlack;
+        }
+        return (translation + rotationWeight_ * std::max(angle, 0.0)) * (1.0 - kWeightedSumSlack);
+    }
+    static constexpr double kSqrt2 = 1.41421356237309504880;
     // OMPL's SO(3) distance is 0 where |q1 . q2| > 1 - 1e-9, i.e. below an angle of 4.5e-5 rad,
     // and quaternions whose norm is off 1 by 1e-9 move the angle by up to 6.3e-5 rad: the chord
     // bound gives up this much so that it stays below OMPL's value.

@@ -273,20 +273,43 @@ private:
                     consider(i);
             return;
         }
-        const auto boundOf = [&](const Node &node) {
-            return metric_.lowerBound(query, node.low.data(), node.high.data(), bar());
+        // A box's bound, its rotation's part left out while that part could not decide
+        // (PoseMetric::lowerBoundBelow); such a bound is completed before a lower bar prunes by it.
+        struct Bounded
+        {
+            double bound;
+            int node;
+            bool rotationLeftOut;
+        };
+        const auto boundOf = [&](int n) {
+            Bounded b{0.0, n, false};
+            b.bound =
+                metric_.lowerBoundBelow(query, nodes_[n].low.data(), nodes_[n].high.data(), bar(), b.rotationLeftOut);
+            return b;
+        };
+        const auto beyondBar = [&](Bounded &b) {
+            const double limit = bar();
+            if (b.bound > limit)
+                return true;
+            if (b.rotationLeftOut && b.bound + metric_.largestRotationPart() >= limit)
+            {
+                b.bound = metric_.lowerBound(query, nodes_[b.node].low.data(), nodes_[b.node].high.data(), limit);
+                b.rotationLeftOut = false;
+                return b.bound > limit;
+            }
+            return false;
         };
         // Depth first, the nearer child first; a box whose bound exceeds the bar holds nothing
         // that could enter best.
-        std::vector<std::pair<double, int>> stack;
-        stack.emplace_back(boundOf(nodes_[0]), 0);
+        std::vector<Bounded> stack;
+        stack.push_back(boundOf(0));
         while (!stack.empty())
         {
-            const auto [bound, n] = stack.back();
+            Bounded top = stack.back();
             stack.pop_back();
-            if (bound > bar())
+            if (beyondBar(top))
                 continue;
-            const Node &node = nodes_[n];
+            const Node &node = nodes_[top.node];
             if (node.firstChild < 0)
             {
                 // A pose's own coordinates bound its distance as a box does: measured only if
@@ -302,17 +325,15 @@ private:
                 }
                 continue;
             }
-            const double first = boundOf(nodes_[node.firstChild]);
-            const double second = boundOf(nodes_[node.firstChild + 1]);
+            Bounded first = boundOf(node.firstChild);
+            Bounded second = boundOf(node.firstChild + 1);
             // The nearer child on top; a child already beyond the bar is left out.
-            const bool firstNearer = first <= second;
-            const std::pair<double, int> near =
-                firstNearer ? std::make_pair(first, node.firstChild) : std::make_pair(second, node.firstChild + 1);
-            const std::pair<double, int> far =
-                firstNearer ? std::make_pair(second, node.firstChild + 1) : std::make_pair(first, node.firstChild);
-            if (far.first <= bar())
+            const bool firstNearer = first.bound <= second.bound;
+            Bounded &near = firstNearer ? first : second;
+            Bounded &far = firstNearer ? second : first;
+            if (!beyondBar(far))
                 stack.push_back(far);
-            if (near.first <= bar())
+            if (!beyondBar(near))
                 stack.push_back(near);
         }
     }
