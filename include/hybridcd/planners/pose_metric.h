@@ -54,10 +54,11 @@ public:
         bool rotationLeftOut = false;
         return bound<false>(p, low, high, enough, rotationLeftOut);
     }
-    /// lowerBound, or its translation's part alone (`rotationLeftOut` set) when even the largest
-    /// rotation part could not lift the bound to `enough`: a search that compares the bound with
-    /// `enough` then decides as with the whole bound, without the rotation's gaps and square root.
-    /// Before comparing such a bound with a lower bar, the search completes it with lowerBound.
+    /// lowerBound, or its translation's part alone (`rotationLeftOut` set) when `enough` is
+    /// finite and even the largest rotation part could not lift the bound to it: a search that
+    /// compares the bound with `enough` then decides as with the whole bound, without the
+    /// rotation's gaps and square root. Before comparing such a bound with a lower bar, the search
+    /// completes it with lowerBound.
     double lowerBoundBelow(const PoseCoordinates &p, const double *low, const double *high, double enough,
                            bool &rotationLeftOut) const
     {
@@ -135,8 +136,11 @@ private:
         if constexpr (LeaveOutRotation)
         {
             // Compared with slack, since largestRotationPart() is rounded too; a bound left
-            // lower than it could be costs only pruning, never an answer.
-            if ((translation + largestRotationPart()) * (1.0 + kSquaredComparisonSlack) < enough)
+            // lower than it could be costs only pruning, never an answer. Not while nothing
+            // bounds the search yet (enough infinite): the bound then only orders the boxes, and
+            // boxes split along a rotation coordinate differ in their rotation part alone.
+            if (enough < std::numeric_limits<double>::infinity() &&
+                (translation + largestRotationPart()) * (1.0 + kSquaredComparisonSlack) < enough)
             {
                 rotationLeftOut = true;
                 return translation * (1.0 - kWeightedSumSlack);

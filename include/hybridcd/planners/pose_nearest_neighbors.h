@@ -327,7 +327,8 @@ private:
             }
             Bounded first = boundOf(node.firstChild);
             Bounded second = boundOf(node.firstChild + 1);
-            // The nearer child on top; a child already beyond the bar is left out.
+            // The nearer child on top (by translation alone where both bounds left their
+            // rotation out); a child already beyond the bar is left out.
             const bool firstNearer = first.bound <= second.bound;
             Bounded &near = firstNearer ? first : second;
             Bounded &far = firstNearer ? second : first;
