@@ -414,7 +414,7 @@ TEST(PoseNearestNeighbors, PlannersPlanTheSameTreeAsWithOmplsDefault)
     for (const bool planar : {false, true})
     {
         const ob::StateSpacePtr space = planar ? ob::StateSpacePtr(se2Space(1)) : ob::StateSpacePtr(se3Space(1));
-        // A wall at x in [-0.1, 0.1] with a narrow window at y in [0.58, 0.62]: free poses are only those
+        // A wall at x in [-0.1, 0.1] with a narrow window at y in [0.595, 0.605]: free poses are only those
         // whose position is outside the wall or inside the window.
         auto setup = std::make_shared<ompl::geometric::SimpleSetup>(space);
         setup->setStateValidityChecker([planar](const ob::State *s) {
@@ -422,7 +422,7 @@ TEST(PoseNearestNeighbors, PlannersPlanTheSameTreeAsWithOmplsDefault)
                 planar ? s->as<ob::SE2StateSpace::StateType>()->getX() : s->as<ob::SE3StateSpace::StateType>()->getX();
             const double y =
                 planar ? s->as<ob::SE2StateSpace::StateType>()->getY() : s->as<ob::SE3StateSpace::StateType>()->getY();
-            return std::fabs(x) > 0.1 || std::fabs(y - 0.6) < 0.02;
+            return std::fabs(x) > 0.1 || std::fabs(y - 0.6) < 0.005;
         });
         ob::ScopedState<> start(space), goal(space);
         start.random();
@@ -475,10 +475,7 @@ TEST(PoseNearestNeighbors, PlannersPlanTheSameTreeAsWithOmplsDefault)
                     paths[run].push_back(values);
                 }
             }
-            // Some seeds find the window within 50 vertices (48 for RRTConnect under seed 3, 34
-            // under seed 5); every vertex of a tree of more than 20 came from a search, and a
-            // search answered differently would have grown a different tree.
-            EXPECT_GT(vertices[0], 20u) << what << ": the window should take a tree of some size to find";
+            EXPECT_GT(vertices[0], 50u) << what << ": the window should take a tree of some size to find";
             EXPECT_TRUE(searchesWithPoseNeighbors(*makePlannerAndSetUp(planner, NeighborSearch::Poses))) << what;
             EXPECT_FALSE(searchesWithPoseNeighbors(*makePlannerAndSetUp(planner, NeighborSearch::OmplDefault))) << what;
             EXPECT_EQ(vertices[0], vertices[1]) << what;
