@@ -10,6 +10,8 @@ packages=(
   # Debian's omplConfig.cmake links these Boost libraries by file name.
   libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libqhull-dev libfcl-dev libbenchmark-dev
+  # SIMD kernels with the instruction set picked at run time.
+  libhwy-dev
   # The command line of the tool and the benchmark programs (header-only).
   libcli11-dev
   # ompl_benchmark_statistics reads the benchmark logs into SQLite.

@@ -21,6 +21,15 @@ namespace hcd
 {
 namespace
 {
+// In NodePair::environment on the traversal stack: the pair's volumes were tested as lanes.
+constexpr std::uint32_t kTestedByLanes = std::uint32_t(1) << 31;
+// Environment trees of more nodes keep no lanes (about 0.6 KB per inner node, a few times the
+// tree's own memory).
+constexpr std::size_t kMaxLaneNodes = std::size_t(1) << 18;
+}  // namespace
+
+namespace
+{
 // Robot pieces mapped to world for the current query, computed on first use. The storage is the
 // query context's, reused across queries; stamps mark what this query has computed (as in
 // PlacedRobot).
@@ -136,6 +145,33 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
     lockstep_ = !robotTree_.empty() && !environmentTree_.empty() &&
                 within2x(double(scene_.robot->triangleCount()), double(scene_.environment->triangleCount())) &&
                 within2x(robotTree_.nodes()[0].radius, environmentTree_.nodes()[0].radius);
+    if constexpr (std::is_same_v<Volume, Obb>)
+        if (!pieceStage_ && environmentTree_.nodes().size() <= kMaxLaneNodes)
+        {
+            const auto &nodes = environmentTree_.nodes();
+            lanesOfNode_.assign(nodes.size(), -1);
+            for (std::size_t i = 0; i < nodes.size(); ++i)
+            {
+                if (nodes[i].isLeaf())
+                    continue;
+                ObbLanes lanes;
+                for (int c = 0; c < 2; ++c)
+                {
+                    const std::uint32_t child = std::uint32_t(nodes[i].firstChild + c);
+                    if (nodes[child].isLeaf())
+                        lanes.add(nodes[child].volume, nodes[child].radius, child);
+                    else
+                        for (int g = 0; g < 2; ++g)
+                        {
+                            const std::uint32_t grandchild = std::uint32_t(nodes[child].firstChild + g);
+                            lanes.add(nodes[grandchild].volume, nodes[grandchild].radius, grandchild);
+                        }
+                }
+                lanes.fill();
+                lanesOfNode_[i] = std::int32_t(environmentLanes_.size());
+                environmentLanes_.push_back(lanes);
+            }
+        }
     const TriangleMesh &env = *scene_.environment;
     environmentTriangleBounds_.reserve(env.triangleCount());
     for (std::size_t t = 0; t < env.triangleCount(); ++t)
@@ -277,19 +313,25 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
     stack.push({0, 0});
     while (!stack.empty() && !hit)
     {
-        const NodePair pair = stack.pop();
+        NodePair pair = stack.pop();
+        // A pair pushed by the lanes' test below has had its volumes tested already.
+        const bool tested = (pair.environment & kTestedByLanes) != 0;
+        pair.environment &= ~kTestedByLanes;
         const typename VolumeTree<Volume>::Node &rn = rNodes[pair.robot];
         const typename VolumeTree<Volume>::Node &en = eNodes[pair.environment];
-        ++boxTests;
         // Circumscribed spheres first (a few flops), then the separating-axis test. Growing the
         // tolerance by delta keeps every pair closer than delta (the axes have length <= 1).
         using Traits = VolumeTraits<Volume>;
         const Volume &robotVolume = placed.volume(pair.robot);
         const double delta = slack.at(robotNodeReach_[pair.robot]);
-        const double reach = rn.radius + en.radius + tolerance + delta;
-        if ((Traits::center(robotVolume) - Traits::center(en.volume)).squaredNorm() > reach * reach ||
-            !Traits::overlap(robotVolume, en.volume, tolerance + delta))
-            continue;
+        if (!tested)
+        {
+            ++boxTests;
+            const double reach = rn.radius + en.radius + tolerance + delta;
+            if ((Traits::center(robotVolume) - Traits::center(en.volume)).squaredNorm() > reach * reach ||
+                !Traits::overlap(robotVolume, en.volume, tolerance + delta))
+                continue;
+        }
         if (rn.isLeaf() && en.isLeaf())
         {
             if constexpr (std::is_same_v<Volume, MedialSphere>)
@@ -357,6 +399,32 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 }
             }
             continue;
+        }
+        if constexpr (std::is_same_v<Volume, Obb>)
+        {
+            // Where the environment node is split (childPairs' rule; in lockstep, with the robot
+            // node's), its boxes two levels down are tested at once against the robot node (each
+            // robot child), by the same sphere and separating-axis tests; the pairs that may
+            // overlap are pushed as tested, in the order childPairs would visit them.
+            const bool splitsEnvironment = !en.isLeaf() && (rn.isLeaf() || (!lockstep_ && rn.radius < en.radius));
+            const bool splitsBoth = lockstep_ && !en.isLeaf() && !rn.isLeaf();
+            if (!lanesOfNode_.empty() && (splitsEnvironment || splitsBoth))
+            {
+                const ObbLanes &lanes = environmentLanes_[std::size_t(lanesOfNode_[pair.environment])];
+                // Robot children last first, so that the first comes off the stack first.
+                const int robotCount = splitsBoth ? 2 : 1;
+                for (int i = robotCount - 1; i >= 0; --i)
+                {
+                    const std::uint32_t r = splitsBoth ? std::uint32_t(rn.firstChild + i) : pair.robot;
+                    const unsigned overlapping = obbLanesOverlap(lanes, placed.volume(r), rNodes[r].radius,
+                                                                 tolerance + slack.at(robotNodeReach_[r]));
+                    boxTests += std::uint64_t(lanes.count);
+                    for (int k = lanes.count - 1; k >= 0; --k)
+                        if ((overlapping >> k) & 1u)
+                            stack.push({r, lanes.node[k] | kTestedByLanes});
+                }
+                continue;
+            }
         }
         // Pushed last first, so that the first child pair comes off the stack first.
         NodePair children[4];
@@ -542,7 +610,8 @@ std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies(bool withVol
          robotTree_.memoryBytes()},
         {"environment " + kind + " tree", environmentTree_.nodes().size(), environmentTree_.depth(),
          environmentTree_.buildSeconds(),
-         environmentTree_.memoryBytes() + environmentTriangleBounds_.capacity() * sizeof(TriangleBounds)}};
+         environmentTree_.memoryBytes() + environmentTriangleBounds_.capacity() * sizeof(TriangleBounds) +
+             environmentLanes_.capacity() * sizeof(ObbLanes) + lanesOfNode_.capacity() * sizeof(std::int32_t)}};
     if (withVolumeRatios)
     {
         std::tie(reports[0].meanVolumeRatio, reports[0].ratioNodes) = meanVolumeRatio(robotTree_);

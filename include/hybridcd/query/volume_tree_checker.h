@@ -2,6 +2,7 @@
 // Checker: a volume tree of the robot against one of the environment, exact triangles at the leaves.
 #pragma once
 
+#include "hybridcd/bv/obb_lanes.h"
 #include "hybridcd/bvh/volume_tree.h"
 #include "hybridcd/narrowphase/convex_decomposition.h"
 #include "hybridcd/query/collision_checker.h"
@@ -18,14 +19,14 @@ struct PlacedTriangle;
 /// intersecting triangle pair. Each node pair is tested
 /// with the spheres first, then the volumes (VolumeTraits<Volume>::overlap, conservative); at the
 /// leaves an exact axis-aligned reject, then the exact triangle test. So the answer equals
-/// BruteForceChecker's whatever the volume. Instantiated for every volume in volume_traits.h.
-/// The trees hold each face once (withoutRepeatedFaces); contacts name source-mesh triangles.
-/// The LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is
-/// tested by linear programming before any triangle. Exact mode (no tolerance): an LP "disjoint"
-/// rejects the leaf pair, an LP "intersecting" is confirmed by the exact triangle tests.
-/// Approximate mode (tolerance T >= 0): a pair of pieces whose approximation bounds (how far any
-/// point of a hull may be from its triangles) add up to at most T decides alone, so contact may be
-/// reported when the triangles are up to T apart, but is never missed.
+/// BruteForceChecker's whatever the volume. OBB trees test the environment's boxes two levels
+/// below a node to split four at a time (SIMD lanes, bv/obb_lanes.h), by the same tests. Instantiated for every volume
+/// in volume_traits.h. The trees hold each face once (withoutRepeatedFaces); contacts name source-mesh triangles. The
+/// LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is tested by linear
+/// programming before any triangle. Exact mode (no tolerance): an LP "disjoint" rejects the leaf pair, an LP
+/// "intersecting" is confirmed by the exact triangle tests. Approximate mode (tolerance T >= 0): a pair of pieces whose
+/// approximation bounds (how far any point of a hull may be from its triangles) add up to at most T decides alone, so
+/// contact may be reported when the triangles are up to T apart, but is never missed.
 struct PieceStage
 {
     unsigned leafTriangles = 8;
@@ -124,6 +125,12 @@ private:
     std::optional<PieceStage> pieceStage_;
     std::optional<double> leafTolerance_;  ///< approximate mode of the medial spheres
     bool lockstep_ = false;                ///< descendsInLockstep()
+    /// OBB trees: for each inner environment node, the boxes two levels down (its grandchildren,
+    /// or a child that is a leaf) as SIMD lanes, at environmentLanes_[lanesOfNode_[node]]; a pair
+    /// that splits its environment node tests them in one call (bv/obb_lanes.h). Empty for other
+    /// volumes and above kMaxLaneNodes environment nodes.
+    std::vector<ObbLanes> environmentLanes_;
+    std::vector<std::int32_t> lanesOfNode_;
     ConvexDecomposition robotPieces_, environmentPieces_;
 };
 

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The SIMD test of one box against four (ObbLanes) against the scalar sphere and separating-axis
+// tests lane by lane: the same answer on random boxes of every shape and scale, and overlap on
+// boxes that touch, nest or coincide.
+#include "support/test_support.h"
+
+#include "hybridcd/bv/obb_lanes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace hcd;
+
+namespace
+{
+double uniform(test::TestRandom &rng, double lo, double hi)
+{
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+// A box of one of four shapes (solid, flat, needle, a point) at an offset, turned at random.
+Obb randomBox(test::TestRandom &rng, double scale)
+{
+    Obb b;
+    b.center = scale * Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+    b.axes = test::randomRotation(rng);
+    const int shape = int(rng() % 4);
+    const Vec3 size(uniform(rng, 0.05, 1), uniform(rng, 0.05, 1), uniform(rng, 0.05, 1));
+    b.halfExtents = scale * (shape == 0   ? size
+                             : shape == 1 ? Vec3(size.x(), size.y(), 0.0)
+                             : shape == 2 ? Vec3(size.x(), 0.0, 0.0)
+                                          : Vec3::Zero());
+    return b;
+}
+
+double boxRadius(const Obb &b) { return b.halfExtents.norm(); }
+
+Obb axisBox(const Vec3 &center, const Vec3 &halfExtents, const Mat3 &axes = Mat3::Identity())
+{
+    Obb b;
+    b.center = center;
+    b.axes = axes;
+    b.halfExtents = halfExtents;
+    return b;
+}
+
+Mat3 turnAboutZ(double angle)
+{
+    Mat3 r;
+    r << std::cos(angle), -std::sin(angle), 0, std::sin(angle), std::cos(angle), 0, 0, 0, 1;
+    return r;
+}
+}  // namespace
+
+TEST(ObbLanes, AgreesWithTheScalarTestsOnRandomBoxes)
+{
+    test::TestRandom rng(test::seeded(41));
+    int overlapping = 0, separated = 0;
+    for (const double scale : {1e-6, 1.0, 1e6})
+        for (int trial = 0; trial < 4000; ++trial)
+        {
+            const Obb a = randomBox(rng, scale);
+            ObbLanes lanes;
+            const int count = 1 + int(rng() % ObbLanes::kLanes);
+            for (int k = 0; k < count; ++k)
+            {
+                const Obb b = randomBox(rng, scale);
+                lanes.add(b, boxRadius(b), std::uint32_t(k));
+            }
+            lanes.fill();
+            const double tolerance = trial % 3 == 0 ? 0.0 : uniform(rng, 0.0, 0.2) * scale;
+            const unsigned simd = obbLanesOverlap(lanes, a, boxRadius(a), tolerance);
+            const unsigned reference = obbLanesOverlapReference(lanes, a, boxRadius(a), tolerance);
+            ASSERT_EQ(simd, reference) << "scale " << scale << ", trial " << trial;
+            ASSERT_EQ(simd >> count, 0u) << "a lane past count answered";
+            for (int k = 0; k < count; ++k)
+                ((simd >> k) & 1u ? overlapping : separated) += 1;
+        }
+    // Both answers are common, so a kernel that always said one of them would fail above.
+    EXPECT_GT(overlapping, 3000);
+    EXPECT_GT(separated, 3000);
+}
+
+TEST(ObbLanes, BoxesThatTouchNestOrCoincideOverlap)
+{
+    const Obb a = axisBox(Vec3::Zero(), Vec3(1, 1, 1));
+    for (const double scale : {1e-6, 1.0, 1e6})
+    {
+        const Obb s = axisBox(scale * a.center, scale * a.halfExtents);
+        ObbLanes lanes;
+        // Face to face at x = 1, edge to edge after a turn of 45 degrees about z, nested, the same
+        // box.
+        lanes.add(axisBox(scale * Vec3(2, 0.5, 0), scale * Vec3(1, 1, 1)), scale * std::sqrt(3.0), 0);
+        lanes.add(axisBox(scale * Vec3(1 + std::sqrt(2.0), 0, 0), scale * Vec3(1, 1, 1), turnAboutZ(M_PI / 4)),
+                  scale * std::sqrt(3.0), 1);
+        lanes.add(axisBox(scale * Vec3(0.2, -0.1, 0.3), scale * Vec3(0.1, 0.2, 0.05), turnAboutZ(0.7)), scale * 0.3, 2);
+        lanes.add(s, scale * std::sqrt(3.0), 3);
+        lanes.fill();
+        EXPECT_EQ(obbLanesOverlap(lanes, s, scale * std::sqrt(3.0), 0.0), 0xFu) << "scale " << scale;
+        EXPECT_EQ(obbLanesOverlapReference(lanes, s, scale * std::sqrt(3.0), 0.0), 0xFu) << "scale " << scale;
+
+        // Moved apart by a hundredth of their size along x: only the nested and the same box stay.
+        ObbLanes apart;
+        apart.add(axisBox(scale * Vec3(2.01, 0.5, 0), scale * Vec3(1, 1, 1)), scale * std::sqrt(3.0), 0);
+        apart.add(axisBox(scale * Vec3(1.01 + std::sqrt(2.0), 0, 0), scale * Vec3(1, 1, 1), turnAboutZ(M_PI / 4)),
+                  scale * std::sqrt(3.0), 1);
+        apart.add(axisBox(scale * Vec3(0.2, -0.1, 0.3), scale * Vec3(0.1, 0.2, 0.05), turnAboutZ(0.7)), scale * 0.3, 2);
+        apart.fill();
+        EXPECT_EQ(obbLanesOverlap(apart, s, scale * std::sqrt(3.0), 0.0), 0x4u) << "scale " << scale;
+        // Within a tolerance of a fiftieth they touch again.
+        EXPECT_EQ(obbLanesOverlap(apart, s, scale * std::sqrt(3.0), 0.02 * scale), 0x7u) << "scale " << scale;
+    }
+}
+
+TEST(ObbLanes, FlatBoxesInOnePlaneOverlapWhereTheyMeet)
+{
+    // Two unit squares in the plane z = 0, one turned: flat boxes (a zero extent) that meet.
+    const Obb square = axisBox(Vec3::Zero(), Vec3(1, 1, 0));
+    ObbLanes lanes;
+    lanes.add(axisBox(Vec3(1.9, 0, 0), Vec3(1, 1, 0), turnAboutZ(0.3)), std::sqrt(2.0), 0);
+    lanes.add(axisBox(Vec3(0, 3.5, 0), Vec3(1, 1, 0), turnAboutZ(0.3)), std::sqrt(2.0), 1);
+    lanes.add(axisBox(Vec3(0, 0, 1e-3), Vec3(1, 1, 0)), std::sqrt(2.0), 2);
+    lanes.fill();
+    EXPECT_EQ(obbLanesOverlap(lanes, square, std::sqrt(2.0), 0.0), 0x1u);
+    EXPECT_EQ(obbLanesOverlap(lanes, square, std::sqrt(2.0), 2e-3), 0x5u);
+    EXPECT_EQ(obbLanesOverlapReference(lanes, square, std::sqrt(2.0), 2e-3), 0x5u);
+}
