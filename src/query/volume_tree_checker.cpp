@@ -145,7 +145,7 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
     lockstep_ = !robotTree_.empty() && !environmentTree_.empty() &&
                 within2x(double(scene_.robot->triangleCount()), double(scene_.environment->triangleCount())) &&
                 within2x(robotTree_.nodes()[0].radius, environmentTree_.nodes()[0].radius);
-    if constexpr (std::is_same_v<Volume, Obb>)
+    if constexpr (LanesOf<Volume>::kUsed)
         if (!pieceStage_ && environmentTree_.nodes().size() <= kMaxLaneNodes)
         {
             const auto &nodes = environmentTree_.nodes();
@@ -154,7 +154,7 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
             {
                 if (nodes[i].isLeaf())
                     continue;
-                ObbLanes lanes;
+                typename LanesOf<Volume>::Type lanes;
                 for (int c = 0; c < 2; ++c)
                 {
                     const std::uint32_t child = std::uint32_t(nodes[i].firstChild + c);
@@ -400,7 +400,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             }
             continue;
         }
-        if constexpr (std::is_same_v<Volume, Obb>)
+        if constexpr (LanesOf<Volume>::kUsed)
         {
             // Where the environment node is split (childPairs' rule; in lockstep, with the robot
             // node's), its boxes two levels down are tested at once against the robot node (each
@@ -410,14 +410,14 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             const bool splitsBoth = lockstep_ && !en.isLeaf() && !rn.isLeaf();
             if (!lanesOfNode_.empty() && (splitsEnvironment || splitsBoth))
             {
-                const ObbLanes &lanes = environmentLanes_[std::size_t(lanesOfNode_[pair.environment])];
+                const auto &lanes = environmentLanes_[std::size_t(lanesOfNode_[pair.environment])];
                 // Robot children last first, so that the first comes off the stack first.
                 const int robotCount = splitsBoth ? 2 : 1;
                 for (int i = robotCount - 1; i >= 0; --i)
                 {
                     const std::uint32_t r = splitsBoth ? std::uint32_t(rn.firstChild + i) : pair.robot;
-                    const unsigned overlapping = obbLanesOverlap(lanes, placed.volume(r), rNodes[r].radius,
-                                                                 tolerance + slack.at(robotNodeReach_[r]));
+                    const unsigned overlapping = lanesOverlap(lanes, placed.volume(r), rNodes[r].radius,
+                                                              tolerance + slack.at(robotNodeReach_[r]));
                     boxTests += std::uint64_t(lanes.count);
                     for (int k = lanes.count - 1; k >= 0; --k)
                         if ((overlapping >> k) & 1u)
@@ -605,13 +605,14 @@ template <class Volume>
 std::vector<HierarchyReport> VolumeTreeChecker<Volume>::hierarchies(bool withVolumeRatios) const
 {
     const std::string kind = VolumeTraits<Volume>::kName;
-    std::vector<HierarchyReport> reports = {
-        {"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(), robotTree_.buildSeconds(),
-         robotTree_.memoryBytes()},
-        {"environment " + kind + " tree", environmentTree_.nodes().size(), environmentTree_.depth(),
-         environmentTree_.buildSeconds(),
-         environmentTree_.memoryBytes() + environmentTriangleBounds_.capacity() * sizeof(TriangleBounds) +
-             environmentLanes_.capacity() * sizeof(ObbLanes) + lanesOfNode_.capacity() * sizeof(std::int32_t)}};
+    std::vector<HierarchyReport> reports = {{"robot " + kind + " tree", robotTree_.nodes().size(), robotTree_.depth(),
+                                             robotTree_.buildSeconds(), robotTree_.memoryBytes()},
+                                            {"environment " + kind + " tree", environmentTree_.nodes().size(),
+                                             environmentTree_.depth(), environmentTree_.buildSeconds(),
+                                             environmentTree_.memoryBytes() +
+                                                 environmentTriangleBounds_.capacity() * sizeof(TriangleBounds) +
+                                                 environmentLanes_.capacity() * sizeof(typename LanesOf<Volume>::Type) +
+                                                 lanesOfNode_.capacity() * sizeof(std::int32_t)}};
     if (withVolumeRatios)
     {
         std::tie(reports[0].meanVolumeRatio, reports[0].ratioNodes) = meanVolumeRatio(robotTree_);

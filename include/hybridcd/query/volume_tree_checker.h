@@ -2,7 +2,7 @@
 // Checker: a volume tree of the robot against one of the environment, exact triangles at the leaves.
 #pragma once
 
-#include "hybridcd/bv/obb_lanes.h"
+#include "hybridcd/bv/box_lanes.h"
 #include "hybridcd/bvh/volume_tree.h"
 #include "hybridcd/narrowphase/convex_decomposition.h"
 #include "hybridcd/query/collision_checker.h"
@@ -14,13 +14,36 @@ namespace hcd
 {
 struct PlacedTriangle;
 
+/// The SIMD lanes an environment tree of `Volume` keeps (bv/box_lanes.h), if any.
+template <class Volume>
+struct LanesOf
+{
+    struct None
+    {
+    };
+    using Type = None;
+    static constexpr bool kUsed = false;
+};
+template <>
+struct LanesOf<Obb>
+{
+    using Type = ObbLanes;
+    static constexpr bool kUsed = true;
+};
+template <>
+struct LanesOf<Aabb>
+{
+    using Type = AabbLanes;
+    static constexpr bool kUsed = true;
+};
+
 /// Simultaneous descent of two trees, splitting the node with the larger circumscribed sphere (both
 /// at once where the trees are alike, descendsInLockstep()), with an early exit on the first
 /// intersecting triangle pair. Each node pair is tested
 /// with the spheres first, then the volumes (VolumeTraits<Volume>::overlap, conservative); at the
 /// leaves an exact axis-aligned reject, then the exact triangle test. So the answer equals
-/// BruteForceChecker's whatever the volume. OBB trees test the environment's boxes two levels
-/// below a node to split four at a time (SIMD lanes, bv/obb_lanes.h), by the same tests. Instantiated for every volume
+/// BruteForceChecker's whatever the volume. OBB and AABB trees test the environment's boxes two
+/// levels below a node to split four at a time (SIMD lanes, LanesOf), by the same tests. Instantiated for every volume
 /// in volume_traits.h. The trees hold each face once (withoutRepeatedFaces); contacts name source-mesh triangles. The
 /// LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is tested by linear
 /// programming before any triangle. Exact mode (no tolerance): an LP "disjoint" rejects the leaf pair, an LP
@@ -125,11 +148,11 @@ private:
     std::optional<PieceStage> pieceStage_;
     std::optional<double> leafTolerance_;  ///< approximate mode of the medial spheres
     bool lockstep_ = false;                ///< descendsInLockstep()
-    /// OBB trees: for each inner environment node, the boxes two levels down (its grandchildren,
-    /// or a child that is a leaf) as SIMD lanes, at environmentLanes_[lanesOfNode_[node]]; a pair
-    /// that splits its environment node tests them in one call (bv/obb_lanes.h). Empty for other
-    /// volumes and above kMaxLaneNodes environment nodes.
-    std::vector<ObbLanes> environmentLanes_;
+    /// Volumes with LanesOf: for each inner environment node, the boxes two levels down (its
+    /// grandchildren, or a child that is a leaf) as SIMD lanes, at
+    /// environmentLanes_[lanesOfNode_[node]]; a pair that splits its environment node tests them
+    /// in one call. Empty for other volumes and above kMaxLaneNodes environment nodes.
+    std::vector<typename LanesOf<Volume>::Type> environmentLanes_;
     std::vector<std::int32_t> lanesOfNode_;
     ConvexDecomposition robotPieces_, environmentPieces_;
 };

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The SIMD test of one box against four (ObbLanes) against the scalar sphere and separating-axis
-// tests lane by lane: the same answer on random boxes of every shape and scale, and overlap on
+// The SIMD tests of one box against four (ObbLanes, AabbLanes) against the scalar sphere and
+// box tests lane by lane: the same answer on random boxes of every shape and scale, and overlap on
 // boxes that touch, nest or coincide.
 #include "support/test_support.h"
 
-#include "hybridcd/bv/obb_lanes.h"
+#include "hybridcd/bv/box_lanes.h"
 
 #include <gtest/gtest.h>
 
@@ -35,8 +35,6 @@ Obb randomBox(test::TestRandom &rng, double scale)
     return b;
 }
 
-double boxRadius(const Obb &b) { return b.halfExtents.norm(); }
-
 Obb axisBox(const Vec3 &center, const Vec3 &halfExtents, const Mat3 &axes = Mat3::Identity())
 {
     Obb b;
@@ -52,36 +50,60 @@ Mat3 turnAboutZ(double angle)
     r << std::cos(angle), -std::sin(angle), 0, std::sin(angle), std::cos(angle), 0, 0, 0, 1;
     return r;
 }
-}  // namespace
 
-TEST(ObbLanes, AgreesWithTheScalarTestsOnRandomBoxes)
+// randomBox's centre and extents, along the world axes.
+Aabb randomAabb(test::TestRandom &rng, double scale)
 {
-    test::TestRandom rng(test::seeded(41));
+    const Obb b = randomBox(rng, scale);
+    Aabb a;
+    a.center = b.center;
+    a.halfExtents = b.halfExtents;
+    return a;
+}
+
+Aabb aabb(const Vec3 &center, const Vec3 &halfExtents)
+{
+    Aabb a;
+    a.center = center;
+    a.halfExtents = halfExtents;
+    return a;
+}
+
+// Random boxes from `randomOf` (rng, scale) in 1-4 lanes against another, at scales 1e-6 to 1e6
+// and tolerances from 0 to a fifth of the scale: the kernel's bits equal the reference's, and both
+// answers are common (so a kernel that always gave one of them would fail).
+template <class Lanes, class RandomBox>
+void expectAgreementOnRandomBoxes(std::uint64_t seed, RandomBox randomOf)
+{
+    test::TestRandom rng(test::seeded(seed));
     int overlapping = 0, separated = 0;
     for (const double scale : {1e-6, 1.0, 1e6})
         for (int trial = 0; trial < 4000; ++trial)
         {
-            const Obb a = randomBox(rng, scale);
-            ObbLanes lanes;
-            const int count = 1 + int(rng() % ObbLanes::kLanes);
+            const auto a = randomOf(rng, scale);
+            Lanes lanes;
+            const int count = 1 + int(rng() % Lanes::kLanes);
             for (int k = 0; k < count; ++k)
             {
-                const Obb b = randomBox(rng, scale);
-                lanes.add(b, boxRadius(b), std::uint32_t(k));
+                const auto b = randomOf(rng, scale);
+                lanes.add(b, b.halfExtents.norm() * (1.0 + 1e-12), std::uint32_t(k));
             }
             lanes.fill();
             const double tolerance = trial % 3 == 0 ? 0.0 : uniform(rng, 0.0, 0.2) * scale;
-            const unsigned simd = obbLanesOverlap(lanes, a, boxRadius(a), tolerance);
-            const unsigned reference = obbLanesOverlapReference(lanes, a, boxRadius(a), tolerance);
-            ASSERT_EQ(simd, reference) << "scale " << scale << ", trial " << trial;
+            const double radius = a.halfExtents.norm() * (1.0 + 1e-12);
+            const unsigned simd = lanesOverlap(lanes, a, radius, tolerance);
+            ASSERT_EQ(simd, lanesOverlapReference(lanes, a, radius, tolerance))
+                << "scale " << scale << ", trial " << trial;
             ASSERT_EQ(simd >> count, 0u) << "a lane past count answered";
             for (int k = 0; k < count; ++k)
                 ((simd >> k) & 1u ? overlapping : separated) += 1;
         }
-    // Both answers are common, so a kernel that always said one of them would fail above.
     EXPECT_GT(overlapping, 3000);
     EXPECT_GT(separated, 3000);
 }
+}  // namespace
+
+TEST(ObbLanes, AgreesWithTheScalarTestsOnRandomBoxes) { expectAgreementOnRandomBoxes<ObbLanes>(41, randomBox); }
 
 TEST(ObbLanes, BoxesThatTouchNestOrCoincideOverlap)
 {
@@ -98,8 +120,8 @@ TEST(ObbLanes, BoxesThatTouchNestOrCoincideOverlap)
         lanes.add(axisBox(scale * Vec3(0.2, -0.1, 0.3), scale * Vec3(0.1, 0.2, 0.05), turnAboutZ(0.7)), scale * 0.3, 2);
         lanes.add(s, scale * std::sqrt(3.0), 3);
         lanes.fill();
-        EXPECT_EQ(obbLanesOverlap(lanes, s, scale * std::sqrt(3.0), 0.0), 0xFu) << "scale " << scale;
-        EXPECT_EQ(obbLanesOverlapReference(lanes, s, scale * std::sqrt(3.0), 0.0), 0xFu) << "scale " << scale;
+        EXPECT_EQ(lanesOverlap(lanes, s, scale * std::sqrt(3.0), 0.0), 0xFu) << "scale " << scale;
+        EXPECT_EQ(lanesOverlapReference(lanes, s, scale * std::sqrt(3.0), 0.0), 0xFu) << "scale " << scale;
 
         // Moved apart by a hundredth of their size along x: only the nested and the same box stay.
         ObbLanes apart;
@@ -108,9 +130,9 @@ TEST(ObbLanes, BoxesThatTouchNestOrCoincideOverlap)
                   scale * std::sqrt(3.0), 1);
         apart.add(axisBox(scale * Vec3(0.2, -0.1, 0.3), scale * Vec3(0.1, 0.2, 0.05), turnAboutZ(0.7)), scale * 0.3, 2);
         apart.fill();
-        EXPECT_EQ(obbLanesOverlap(apart, s, scale * std::sqrt(3.0), 0.0), 0x4u) << "scale " << scale;
+        EXPECT_EQ(lanesOverlap(apart, s, scale * std::sqrt(3.0), 0.0), 0x4u) << "scale " << scale;
         // Within a tolerance of a fiftieth they touch again.
-        EXPECT_EQ(obbLanesOverlap(apart, s, scale * std::sqrt(3.0), 0.02 * scale), 0x7u) << "scale " << scale;
+        EXPECT_EQ(lanesOverlap(apart, s, scale * std::sqrt(3.0), 0.02 * scale), 0x7u) << "scale " << scale;
     }
 }
 
@@ -123,7 +145,34 @@ TEST(ObbLanes, FlatBoxesInOnePlaneOverlapWhereTheyMeet)
     lanes.add(axisBox(Vec3(0, 3.5, 0), Vec3(1, 1, 0), turnAboutZ(0.3)), std::sqrt(2.0), 1);
     lanes.add(axisBox(Vec3(0, 0, 1e-3), Vec3(1, 1, 0)), std::sqrt(2.0), 2);
     lanes.fill();
-    EXPECT_EQ(obbLanesOverlap(lanes, square, std::sqrt(2.0), 0.0), 0x1u);
-    EXPECT_EQ(obbLanesOverlap(lanes, square, std::sqrt(2.0), 2e-3), 0x5u);
-    EXPECT_EQ(obbLanesOverlapReference(lanes, square, std::sqrt(2.0), 2e-3), 0x5u);
+    EXPECT_EQ(lanesOverlap(lanes, square, std::sqrt(2.0), 0.0), 0x1u);
+    EXPECT_EQ(lanesOverlap(lanes, square, std::sqrt(2.0), 2e-3), 0x5u);
+    EXPECT_EQ(lanesOverlapReference(lanes, square, std::sqrt(2.0), 2e-3), 0x5u);
+}
+
+TEST(AabbLanes, AgreesWithTheScalarTestsOnRandomBoxes) { expectAgreementOnRandomBoxes<AabbLanes>(43, randomAabb); }
+
+TEST(AabbLanes, BoxesThatTouchNestOrCoincideOverlap)
+{
+    for (const double scale : {1e-6, 1.0, 1e6})
+    {
+        const Aabb a = aabb(Vec3::Zero(), scale * Vec3(1, 1, 1));
+        // Rounded outward as a tree's radii are: corner to corner, the spheres touch exactly.
+        const double r = scale * std::sqrt(3.0) * (1.0 + 1e-12);
+        AabbLanes lanes;
+        lanes.add(aabb(scale * Vec3(2, 0.5, 0), scale * Vec3(1, 1, 1)), r, 0);           // face to face at x = 1
+        lanes.add(aabb(scale * Vec3(2, 2, 2), scale * Vec3(1, 1, 1)), r, 1);             // corner to corner
+        lanes.add(aabb(scale * Vec3(0.2, -0.1, 0.3), scale * Vec3(0.1, 0.2, 0)), r, 2);  // nested, flat
+        lanes.add(a, r, 3);                                                              // the same box
+        lanes.fill();
+        EXPECT_EQ(lanesOverlap(lanes, a, r, 0.0), 0xFu) << "scale " << scale;
+        EXPECT_EQ(lanesOverlapReference(lanes, a, r, 0.0), 0xFu) << "scale " << scale;
+
+        AabbLanes apart;
+        apart.add(aabb(scale * Vec3(2.01, 0.5, 0), scale * Vec3(1, 1, 1)), r, 0);
+        apart.add(aabb(scale * Vec3(2.01, 2.01, 2.01), scale * Vec3(1, 1, 1)), r, 1);
+        apart.fill();
+        EXPECT_EQ(lanesOverlap(apart, a, r, 0.0), 0x0u) << "scale " << scale;
+        EXPECT_EQ(lanesOverlap(apart, a, r, 0.02 * scale), 0x3u) << "scale " << scale;
+    }
 }
