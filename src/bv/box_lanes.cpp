@@ -58,7 +58,8 @@ unsigned SeparatedObbLanes(const ObbLanes &lanes, const Obb &a, double aRadius, 
         V t[3], r[3][3], absR[3][3], ea[3], eb[3];
         for (int i = 0; i < 3; ++i)
         {
-            const V b0 = Field(d, lanes, ObbLanes::kAxes + i, base), b1 = Field(d, lanes, ObbLanes::kAxes + 3 + i, base),
+            const V b0 = Field(d, lanes, ObbLanes::kAxes + i, base),
+                    b1 = Field(d, lanes, ObbLanes::kAxes + 3 + i, base),
                     b2 = Field(d, lanes, ObbLanes::kAxes + 6 + i, base);  // rows of the lane box's axis i
             t[i] = hn::Add(hn::Add(hn::Mul(b0, gap[0]), hn::Mul(b1, gap[1])), hn::Mul(b2, gap[2]));
             for (int j = 0; j < 3; ++j)

@@ -23,8 +23,8 @@ namespace
 {
 // In NodePair::environment on the traversal stack: the pair's volumes were tested as lanes.
 constexpr std::uint32_t kTestedByLanes = std::uint32_t(1) << 31;
-// Environment trees of more nodes keep no lanes (about 0.6 KB per inner node, a few times the
-// tree's own memory).
+// Environment trees of more nodes keep no lanes (a block of four boxes, 0.3-0.6 KB, per inner node
+// at an even depth).
 constexpr std::size_t kMaxLaneNodes = std::size_t(1) << 18;
 }  // namespace
 
@@ -148,10 +148,16 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
     if constexpr (LanesOf<Volume>::kUsed)
         if (!pieceStage_ && environmentTree_.nodes().size() <= kMaxLaneNodes)
         {
+            // Only nodes at even depths: a traversal that splits through lanes goes from the root
+            // to grandchildren, so it never splits a node at an odd depth, and each box is stored
+            // in one block (half the memory of a block at every inner node).
             const auto &nodes = environmentTree_.nodes();
             lanesOfNode_.assign(nodes.size(), -1);
-            for (std::size_t i = 0; i < nodes.size(); ++i)
+            std::vector<std::uint32_t> evenDepth{0};
+            while (!evenDepth.empty())
             {
+                const std::uint32_t i = evenDepth.back();
+                evenDepth.pop_back();
                 if (nodes[i].isLeaf())
                     continue;
                 typename LanesOf<Volume>::Type lanes;
@@ -165,12 +171,14 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
                         {
                             const std::uint32_t grandchild = std::uint32_t(nodes[child].firstChild + g);
                             lanes.add(nodes[grandchild].volume, nodes[grandchild].radius, grandchild);
+                            evenDepth.push_back(grandchild);
                         }
                 }
                 lanes.fill();
                 lanesOfNode_[i] = std::int32_t(environmentLanes_.size());
                 environmentLanes_.push_back(lanes);
             }
+            environmentLanes_.shrink_to_fit();
         }
     const TriangleMesh &env = *scene_.environment;
     environmentTriangleBounds_.reserve(env.triangleCount());
@@ -408,7 +416,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             // overlap are pushed as tested, in the order childPairs would visit them.
             const bool splitsEnvironment = !en.isLeaf() && (rn.isLeaf() || (!lockstep_ && rn.radius < en.radius));
             const bool splitsBoth = lockstep_ && !en.isLeaf() && !rn.isLeaf();
-            if (!lanesOfNode_.empty() && (splitsEnvironment || splitsBoth))
+            if (!lanesOfNode_.empty() && (splitsEnvironment || splitsBoth) && lanesOfNode_[pair.environment] >= 0)
             {
                 const auto &lanes = environmentLanes_[std::size_t(lanesOfNode_[pair.environment])];
                 // Robot children last first, so that the first comes off the stack first.

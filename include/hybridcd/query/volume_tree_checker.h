@@ -148,10 +148,11 @@ private:
     std::optional<PieceStage> pieceStage_;
     std::optional<double> leafTolerance_;  ///< approximate mode of the medial spheres
     bool lockstep_ = false;                ///< descendsInLockstep()
-    /// Volumes with LanesOf: for each inner environment node, the boxes two levels down (its
-    /// grandchildren, or a child that is a leaf) as SIMD lanes, at
-    /// environmentLanes_[lanesOfNode_[node]]; a pair that splits its environment node tests them
-    /// in one call. Empty for other volumes and above kMaxLaneNodes environment nodes.
+    /// Volumes with LanesOf: for each inner environment node at an even depth, the boxes two
+    /// levels down (its grandchildren, or a child that is a leaf) as SIMD lanes, at
+    /// environmentLanes_[lanesOfNode_[node]] (-1 elsewhere); a pair that splits its environment
+    /// node tests them in one call. Empty for other volumes and above kMaxLaneNodes environment
+    /// nodes.
     std::vector<typename LanesOf<Volume>::Type> environmentLanes_;
     std::vector<std::int32_t> lanesOfNode_;
     ConvexDecomposition robotPieces_, environmentPieces_;
