@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// One box against four (box_lanes.h), compiled by Google Highway for each x86 instruction set
-// (SSE2 to AVX-512) and dispatched at run time to the widest the machine has.
+// One box against four (box_lanes.h), compiled by Google Highway for each x86 instruction set it
+// targets (its portable path, SSSE3, SSE4, AVX2, AVX-512) and dispatched at run time to the widest
+// the machine has.
 #include "hybridcd/bv/box_lanes.h"
 
 #include <cstddef>

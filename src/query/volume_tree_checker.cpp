@@ -146,7 +146,7 @@ VolumeTreeChecker<Volume>::VolumeTreeChecker(CollisionScene scene, std::string n
                 within2x(double(scene_.robot->triangleCount()), double(scene_.environment->triangleCount())) &&
                 within2x(robotTree_.nodes()[0].radius, environmentTree_.nodes()[0].radius);
     if constexpr (LanesOf<Volume>::kUsed)
-        if (!pieceStage_ && environmentTree_.nodes().size() <= kMaxLaneNodes)
+        if (!pieceStage_ && !environmentTree_.empty() && environmentTree_.nodes().size() <= kMaxLaneNodes)
         {
             // Only nodes at even depths: a traversal that splits through lanes goes from the root
             // to grandchildren, so it never splits a node at an odd depth, and each box is stored

@@ -326,3 +326,23 @@ TEST(VolumeAgreement, LikePartsDescendInLockstepAndStayExact)
               << listedPoses << " near-pair lists compared\n";
     EXPECT_GT(free, std::size_t(test::cases(300) / 5));
 }
+
+// A mesh without triangles on either side: every tree checker builds (no lanes, no grid) and finds
+// nothing, as bruteforce does.
+TEST(VolumeAgreement, EmptyMeshesTouchNothing)
+{
+    const auto box = std::make_shared<const TriangleMesh>(test::boxMesh(Vec3::Zero(), Vec3::Ones()));
+    const auto empty = std::make_shared<const TriangleMesh>();
+    const RigidTransform pose{Mat3::Identity(), Vec3(0.25, 0.0, 0.0)};
+    for (const CollisionScene &scene :
+         {CollisionScene{box, empty, "box", "empty"}, CollisionScene{empty, box, "empty", "box"}})
+        for (const char *name : {"obb", "aabb", "kdop18", "auto"})
+        {
+            SCOPED_TRACE(std::string(name) + ", robot " + scene.robotName);
+            const std::unique_ptr<CollisionChecker> checker = makeChecker(name, scene);
+            EXPECT_FALSE(checker->collides(pose));
+            EXPECT_EQ(checker->distance(pose), std::numeric_limits<double>::infinity());
+            EXPECT_TRUE(checker->contacts(pose, 4).empty());
+            EXPECT_EQ(BruteForceChecker(scene).collides(pose), false);
+        }
+}
