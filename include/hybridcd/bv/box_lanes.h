@@ -68,4 +68,27 @@ unsigned lanesOverlap(const AabbLanes &lanes, const Aabb &a, double aRadius, dou
 /// the SIMD kernels are tested against.
 unsigned lanesOverlapReference(const ObbLanes &lanes, const Obb &a, double aRadius, double tolerance);
 unsigned lanesOverlapReference(const AabbLanes &lanes, const Aabb &a, double aRadius, double tolerance);
+
+/// The lanes of a volume type, if it has them: boxes of that type four at a time.
+template <class Volume>
+struct LanesOf
+{
+    struct None
+    {
+    };
+    using Type = None;
+    static constexpr bool kUsed = false;
+};
+template <>
+struct LanesOf<Obb>
+{
+    using Type = ObbLanes;
+    static constexpr bool kUsed = true;
+};
+template <>
+struct LanesOf<Aabb>
+{
+    using Type = AabbLanes;
+    static constexpr bool kUsed = true;
+};
 }  // namespace hcd

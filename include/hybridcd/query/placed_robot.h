@@ -2,6 +2,7 @@
 // The robot's volumes and triangles mapped to world for one query, computed on first use.
 #pragma once
 
+#include "hybridcd/bv/box_lanes.h"
 #include "hybridcd/bvh/volume_tree.h"
 #include "hybridcd/query/query_context.h"
 #include "hybridcd/query/stamped_slots.h"
@@ -43,7 +44,9 @@ template <class Volume>
 class PlacedRobot
 {
 public:
-    PlacedRobot(const VolumeTree<Volume> &tree, const RigidTransform &worldFromRobot, QueryContext &context)
+    /// `laneBlocks`: how many blocks of lanes() the caller numbers (0 when it places none).
+    PlacedRobot(const VolumeTree<Volume> &tree, const RigidTransform &worldFromRobot, QueryContext &context,
+                std::size_t laneBlocks = 0)
         : tree_(tree),
           pose_(worldFromRobot),
           placement_(PlacementOf<Volume>::of(worldFromRobot)),
@@ -52,6 +55,7 @@ public:
     {
         s_.volumes.reserve(tree.nodes().size());
         s_.triangles.reserve(tree.mesh().triangleCount());
+        s_.lanes.reserve(laneBlocks);
     }
 
     /// World-frame volume of robot tree node `node`.
@@ -59,6 +63,19 @@ public:
     {
         return s_.volumes.get(node, query_, [&](Volume &v) {
             v = VolumeTraits<Volume>::transformed(tree_.nodes()[node].volume, placement_);
+        });
+    }
+
+    /// World-frame lanes (bv/box_lanes.h) of robot tree nodes nodes[0 .. count) (1 to 4), packed
+    /// from their placed volumes on first use; `block` (below the constructor's laneBlocks) names
+    /// that set of nodes in every query.
+    const typename LanesOf<Volume>::Type &lanes(std::size_t block, const std::uint32_t *nodes, int count)
+    {
+        return s_.lanes.get(block, query_, [&](typename LanesOf<Volume>::Type &lanes) {
+            lanes.count = 0;
+            for (int k = 0; k < count; ++k)
+                lanes.add(volume(nodes[k]), tree_.nodes()[nodes[k]].radius, nodes[k]);
+            lanes.fill();
         });
     }
 
@@ -80,6 +97,7 @@ private:
     {
         StampedSlots<Volume> volumes;
         StampedSlots<PlacedTriangle> triangles;
+        StampedSlots<typename LanesOf<Volume>::Type> lanes;
         std::uint64_t query = 0;
     };
 

@@ -14,42 +14,20 @@ namespace hcd
 {
 struct PlacedTriangle;
 
-/// The SIMD lanes an environment tree of `Volume` keeps (bv/box_lanes.h), if any.
-template <class Volume>
-struct LanesOf
-{
-    struct None
-    {
-    };
-    using Type = None;
-    static constexpr bool kUsed = false;
-};
-template <>
-struct LanesOf<Obb>
-{
-    using Type = ObbLanes;
-    static constexpr bool kUsed = true;
-};
-template <>
-struct LanesOf<Aabb>
-{
-    using Type = AabbLanes;
-    static constexpr bool kUsed = true;
-};
-
 /// Simultaneous descent of two trees, splitting the node with the larger circumscribed sphere (both
 /// at once where the trees are alike, descendsInLockstep()), with an early exit on the first
 /// intersecting triangle pair. Each node pair is tested
 /// with the spheres first, then the volumes (VolumeTraits<Volume>::overlap, conservative); at the
 /// leaves an exact axis-aligned reject, then the exact triangle test. So the answer equals
 /// BruteForceChecker's whatever the volume. OBB and AABB trees test the environment's boxes two
-/// levels below a node to split four at a time (SIMD lanes, LanesOf), by the same tests. Instantiated for every volume
-/// in volume_traits.h. The trees hold each face once (withoutRepeatedFaces); contacts name source-mesh triangles. The
-/// LP stage (`--checker lp`): leaves hold up to `leafTriangles` triangles whose convex hull is tested by linear
-/// programming before any triangle. Exact mode (no tolerance): an LP "disjoint" rejects the leaf pair, an LP
-/// "intersecting" is confirmed by the exact triangle tests. Approximate mode (tolerance T >= 0): a pair of pieces whose
-/// approximation bounds (how far any point of a hull may be from its triangles) add up to at most T decides alone, so
-/// contact may be reported when the triangles are up to T apart, but is never missed.
+/// levels below a node to split four at a time (SIMD lanes, LanesOf), by the same tests, and the robot's likewise,
+/// placed in world once per query. Instantiated for every volume in volume_traits.h. The trees hold each face once
+/// (withoutRepeatedFaces); contacts name source-mesh triangles. The LP stage (`--checker lp`): leaves hold up to
+/// `leafTriangles` triangles whose convex hull is tested by linear programming before any triangle. Exact mode (no
+/// tolerance): an LP "disjoint" rejects the leaf pair, an LP "intersecting" is confirmed by the exact triangle tests.
+/// Approximate mode (tolerance T >= 0): a pair of pieces whose approximation bounds (how far any point of a hull may be
+/// from its triangles) add up to at most T decides alone, so contact may be reported when the triangles are up to T
+/// apart, but is never missed.
 struct PieceStage
 {
     unsigned leafTriangles = 8;
@@ -155,6 +133,17 @@ private:
     /// nodes.
     std::vector<typename LanesOf<Volume>::Type> environmentLanes_;
     std::vector<std::int32_t> lanesOfNode_;
+    /// The same blocks of the robot tree, by node only (robot nodes two levels below the node at
+    /// robotBlocks_[robotBlockOfNode_[node]], and the largest robotNodeReach_ among them); a pair
+    /// that splits its robot node places them in world (PlacedRobot::lanes) and tests them at once.
+    struct RobotBlock
+    {
+        std::uint32_t node[4];
+        int count;
+        double reach;
+    };
+    std::vector<RobotBlock> robotBlocks_;
+    std::vector<std::int32_t> robotBlockOfNode_;
     ConvexDecomposition robotPieces_, environmentPieces_;
 };
 
