@@ -81,7 +81,9 @@ int run(const cli::CommandLine &cl, const CheckerCatalogue &checkers)
         {
             order.push_back(name);
             const auto t0 = std::chrono::steady_clock::now();
-            const auto checker = checkers.make(name, scene);
+            CheckerOptions options;
+            options.clearanceGrid = !cl.has("no-grid");
+            const auto checker = checkers.make(name, scene, options);
             const double buildMs =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             std::size_t bytes = 0;
@@ -128,6 +130,7 @@ int main(int argc, char **argv)
     cl.positionals("PROBLEM.cfg", "the problem whose meshes are subdivided")
         .option("max-triangles", "N", "stop above N environment triangles (default 1100000)")
         .option("states", "N", "random states per size (default 2000)")
+        .flag("no-grid", "hybridcd checkers without their clearance grid first layer")
         .option("checker", "NAME[,NAME...]", "the checkers (default obb,fcl)")
         .footer(
             "\nExample:\n  hybridcd_bench_scaling --max-triangles 100000 --checker obb,fcl problems/window_3d.cfg\n\n" +

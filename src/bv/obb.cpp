@@ -128,17 +128,34 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance)
 
 double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance, double enough)
 {
-    const Mat3 r = b.axes.transpose() * a.axes;
-    const Vec3 t = b.axes.transpose() * (a.center - b.center);
-    const Mat3 absR = r.cwiseAbs();
+    // Sums of three products are written out, added left to right, so that the SIMD lanes
+    // (lanesDistanceLowerBound) compute the same numbers.
+    const auto sum3 = [](double x0, double y0, double x1, double y1, double x2, double y2) {
+        return (x0 * y0 + x1 * y1) + x2 * y2;
+    };
+    const Vec3 offset = a.center - b.center;
+    Mat3 r, absR;
+    Vec3 t;
+    for (int i = 0; i < 3; ++i)
+    {
+        t[i] = sum3(b.axes(0, i), offset[0], b.axes(1, i), offset[1], b.axes(2, i), offset[2]);
+        for (int j = 0; j < 3; ++j)
+        {
+            r(i, j) = sum3(b.axes(0, i), a.axes(0, j), b.axes(1, i), a.axes(1, j), b.axes(2, i), a.axes(2, j));
+            absR(i, j) = std::fabs(r(i, j));
+        }
+    }
+    const Vec3 &ha = a.halfExtents, &hb = b.halfExtents;
     // Along each frame's three face axes: the gaps on orthonormal axes add in squares, since every
     // pair of points differs by at least each positive gap along its axis.
     double inB = 0.0, inA = 0.0;
     for (int i = 0; i < 3; ++i)
     {
-        const double gapB = std::max(0.0, std::fabs(t[i]) - b.halfExtents[i] - absR.row(i).dot(a.halfExtents));
+        const double gapB =
+            std::max(0.0, std::fabs(t[i]) - hb[i] - sum3(absR(i, 0), ha[0], absR(i, 1), ha[1], absR(i, 2), ha[2]));
+        const double along = sum3(t[0], r(0, i), t[1], r(1, i), t[2], r(2, i));
         const double gapA =
-            std::max(0.0, std::fabs(t.dot(r.col(i))) - a.halfExtents[i] - absR.col(i).dot(b.halfExtents));
+            std::max(0.0, std::fabs(along) - ha[i] - sum3(absR(0, i), hb[0], absR(1, i), hb[1], absR(2, i), hb[2]));
         inB += gapB * gapB;
         inA += gapA * gapA;
     }
@@ -146,20 +163,24 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance, doubl
     if (gap - tolerance >= enough)
         return gap - tolerance;
     // The axis through the two centres, where boxes far apart in a skew pose are nearly farthest.
-    const double centres = t.norm();
+    const double centres = std::sqrt(sum3(t[0], t[0], t[1], t[1], t[2], t[2]));
     if (centres > 0.0)
     {
         const Vec3 axis = t / centres;  // b's frame
-        const double along =
-            centres - b.halfExtents.dot(axis.cwiseAbs()) - a.halfExtents.dot((r.transpose() * axis).cwiseAbs());
-        gap = std::max(gap, along);
+        const double widthB = sum3(hb[0], std::fabs(axis[0]), hb[1], std::fabs(axis[1]), hb[2], std::fabs(axis[2]));
+        double widthA = 0.0;
+        for (int j = 0; j < 3; ++j)
+        {
+            const double turned = sum3(r(0, j), axis[0], r(1, j), axis[1], r(2, j), axis[2]);  // a's frame
+            widthA = j == 0 ? ha[j] * std::fabs(turned) : widthA + ha[j] * std::fabs(turned);
+        }
+        gap = std::max(gap, centres - widthB - widthA);
         if (gap - tolerance >= enough)
             return gap - tolerance;
     }
     // The nine edge-edge axes b_i x a_j (in b's frame e_i x r.col(j)), of length sin(angle): the
     // gap along an unnormalised axis L is (|t . L| - a's and b's half widths along L) / |L|. Flat
     // boxes (one triangle each) in skew poses are often farthest apart along one of these.
-    const Vec3 &ha = a.halfExtents, &hb = b.halfExtents;
     for (int i = 0; i < 3; ++i)
     {
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;

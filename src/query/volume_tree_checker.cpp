@@ -571,7 +571,7 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
     const auto &rNodes = robotTree_.nodes();
     const auto &eNodes = environmentTree_.nodes();
     const TriangleMesh &env = *scene_.environment;
-    PlacedRobot<Volume> placed(robotTree_, worldFromRobot, context);
+    PlacedRobot<Volume> placed(robotTree_, worldFromRobot, context, robotBlocks_.size());
     std::uint64_t boxTests = 0, triangleTests = 0;
     const auto lowerBound = [&](const NodePair &p, double best) {
         ++boxTests;
@@ -616,9 +616,64 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
                                      env, environmentTree_.triangleOrder().data() + en.firstTriangle, en.triangleCount,
                                      best, triangleTests);
     };
-    const auto split = [&](const NodePair &p, NodePair *children) { return childPairs(p, children); };
-    const double best =
-        bestFirstDistance(context.scratch<NearestPairQueue>(), lowerBound, isLeafPair, leafDistance, split);
+    const auto boundedSplit = [&](const NodePair &p, double best, BoundedPair *out) {
+        if constexpr (LanesOf<Volume>::kUsed)
+        {
+            // Where the environment node (or, with oriented boxes, the robot node) is split, the
+            // boxes two levels below it are bounded at once, as in anyPairWithin.
+            const typename VolumeTree<Volume>::Node &rn = rNodes[p.robot];
+            const typename VolumeTree<Volume>::Node &en = eNodes[p.environment];
+            int count = 0;
+            double bounds[4];
+            // A pair of single triangles also takes their world boxes' separation, as lowerBound.
+            const auto add = [&](std::uint32_t r, std::uint32_t e, double bound) {
+                const typename VolumeTree<Volume>::Node &a = rNodes[r], &b = eNodes[e];
+                if (bound < best && a.isLeaf() && b.isLeaf() && a.triangleCount == 1 && b.triangleCount == 1)
+                {
+                    const PlacedTriangle &ta = placed.triangle(robotTree_.triangleOrder()[a.firstTriangle]);
+                    const TriangleBounds &tb =
+                        environmentTriangleBounds_[environmentTree_.triangleOrder()[b.firstTriangle]];
+                    bound = std::max(bound, boxSeparation(ta.min, ta.max, tb.min, tb.max).norm() - tolerance);
+                }
+                out[count++] = {{r, e}, bound};
+            };
+            const bool splitsEnvironment = !en.isLeaf() && (rn.isLeaf() || (!lockstep_ && rn.radius < en.radius));
+            const bool splitsBoth = lockstep_ && !en.isLeaf() && !rn.isLeaf();
+            if (!lanesOfNode_.empty() && (splitsEnvironment || splitsBoth) && lanesOfNode_[p.environment] >= 0)
+            {
+                const auto &lanes = environmentLanes_[std::size_t(lanesOfNode_[p.environment])];
+                for (int i = 0; i < (splitsBoth ? 2 : 1); ++i)
+                {
+                    const std::uint32_t r = splitsBoth ? std::uint32_t(rn.firstChild + i) : p.robot;
+                    lanesDistanceLowerBound(lanes, placed.volume(r), rNodes[r].radius, tolerance, bounds);
+                    boxTests += std::uint64_t(lanes.count);
+                    for (int k = 0; k < lanes.count; ++k)
+                        add(r, lanes.node[k], bounds[k]);
+                }
+                return count;
+            }
+            const bool splitsRobot = !rn.isLeaf() && (en.isLeaf() || (!lockstep_ && rn.radius >= en.radius));
+            if (!robotBlockOfNode_.empty() && splitsRobot && robotBlockOfNode_[p.robot] >= 0)
+            {
+                const std::size_t b = std::size_t(robotBlockOfNode_[p.robot]);
+                const RobotBlock &block = robotBlocks_[b];
+                const auto &lanes = placed.lanes(b, block.node, block.count);
+                lanesDistanceLowerBound(lanes, en.volume, en.radius, tolerance, bounds);
+                boxTests += std::uint64_t(lanes.count);
+                for (int k = 0; k < lanes.count; ++k)
+                    add(lanes.node[k], p.environment, bounds[k]);
+                return count;
+            }
+        }
+        NodePair children[kMaxPairChildren];
+        const int count = childPairs(p, children);
+        for (int k = 0; k < count; ++k)
+            out[k] = {children[k], lowerBound(children[k], best)};
+        return count;
+    };
+    const double best = bestFirstDistanceBounded(context.scratch<NearestPairQueue>(),
+                                                 lowerBound(NodePair{0, 0}, std::numeric_limits<double>::infinity()),
+                                                 isLeafPair, leafDistance, boundedSplit);
     context.stats.boundingVolumeTests += boxTests;
     context.stats.primitiveTests += triangleTests;
     return best;

@@ -10,6 +10,7 @@
 #include <hwy/targets.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace hcd;
@@ -70,6 +71,22 @@ Aabb aabb(const Vec3 &center, const Vec3 &halfExtents)
     return a;
 }
 
+// One to four random boxes from `randomOf` (rng, scale) in lanes, each with a sphere radius from
+// `radiusLow` to 1.2 times its circumscribed radius.
+template <class Lanes, class RandomBox>
+Lanes randomLanes(test::TestRandom &rng, RandomBox randomOf, double scale, double radiusLow)
+{
+    Lanes lanes;
+    const int count = 1 + int(rng() % Lanes::kLanes);
+    for (int k = 0; k < count; ++k)
+    {
+        const auto b = randomOf(rng, scale);
+        lanes.add(b, b.halfExtents.norm() * uniform(rng, radiusLow, 1.2), std::uint32_t(k));
+    }
+    lanes.fill();
+    return lanes;
+}
+
 // Random boxes from `randomOf` (rng, scale) in 1-4 lanes against another, at scales 1e-6 to 1e6
 // and tolerances from 0 to a fifth of the scale, with sphere radii from a fifth of the box's
 // circumscribed radius up (so that the sphere test decides some lanes): the kernel's bits equal
@@ -85,14 +102,8 @@ void expectAgreementOnRandomBoxesWithTheChosenTarget(std::uint64_t seed, RandomB
         for (int trial = 0; trial < 4000; ++trial)
         {
             const auto a = randomOf(rng, scale);
-            Lanes lanes;
-            const int count = 1 + int(rng() % Lanes::kLanes);
-            for (int k = 0; k < count; ++k)
-            {
-                const auto b = randomOf(rng, scale);
-                lanes.add(b, b.halfExtents.norm() * uniform(rng, 0.2, 1.2), std::uint32_t(k));
-            }
-            lanes.fill();
+            const Lanes lanes = randomLanes<Lanes>(rng, randomOf, scale, 0.2);
+            const int count = lanes.count;
             const double tolerance = trial % 3 == 0 ? 0.0 : uniform(rng, 0.0, 0.2) * scale;
             const double radius = a.halfExtents.norm() * uniform(rng, 0.2, 1.2);
             const unsigned simd = lanesOverlap(lanes, a, radius, tolerance);
@@ -106,20 +117,116 @@ void expectAgreementOnRandomBoxesWithTheChosenTarget(std::uint64_t seed, RandomB
     EXPECT_GT(separated, 2000);
 }
 
-template <class Lanes, class RandomBox>
-void expectAgreementOnRandomBoxes(std::uint64_t seed, RandomBox randomOf)
+// Runs `check` once per instruction set compiled in and present, each forced in turn.
+template <class Check>
+void forEachTarget(Check check)
 {
     for (const std::int64_t target : hwy::SupportedAndGeneratedTargets())
     {
         SCOPED_TRACE(hwy::TargetName(target));
         hwy::SetSupportedTargetsForTest(target);
-        expectAgreementOnRandomBoxesWithTheChosenTarget<Lanes>(seed, randomOf);
+        check();
         hwy::SetSupportedTargetsForTest(0);
         if (::testing::Test::HasFatalFailure())
             return;
     }
 }
+
+template <class Lanes, class RandomBox>
+void expectAgreementOnRandomBoxes(std::uint64_t seed, RandomBox randomOf)
+{
+    forEachTarget([&] { expectAgreementOnRandomBoxesWithTheChosenTarget<Lanes>(seed, randomOf); });
+}
+// The corners of a box (eight; fewer distinct ones when flat).
+std::vector<Vec3> cornersOf(const Obb &b)
+{
+    std::vector<Vec3> corners;
+    for (int k = 0; k < 8; ++k)
+        corners.push_back(b.center + b.axes * Vec3((k & 1 ? 1 : -1) * b.halfExtents.x(),
+                                                   (k & 2 ? 1 : -1) * b.halfExtents.y(),
+                                                   (k & 4 ? 1 : -1) * b.halfExtents.z()));
+    return corners;
+}
+std::vector<Vec3> cornersOf(const Aabb &b) { return cornersOf(axisBox(b.center, b.halfExtents)); }
+
+// As expectAgreementOnRandomBoxes for the distance bounds: the kernel's numbers equal the
+// reference's bit for bit, both zero and positive bounds are common, and no bound exceeds the
+// distance between two corners of the boxes (points of both, so an independent upper bound on
+// their distance).
+template <class Lanes, class RandomBox>
+void expectEqualBoundsOnRandomBoxesWithTheChosenTarget(std::uint64_t seed, RandomBox randomOf)
+{
+    test::TestRandom rng(test::seeded(seed));
+    int zero = 0, positive = 0;
+    for (const double scale : {1e-6, 1.0, 1e6})
+        for (int trial = 0; trial < 4000; ++trial)
+        {
+            const auto a = randomOf(rng, scale);
+            const Lanes lanes = randomLanes<Lanes>(rng, randomOf, scale, 1.0);
+            const int count = lanes.count;
+            const double tolerance = trial % 3 == 0 ? 0.0 : uniform(rng, 0.0, 0.05) * scale;
+            const double radius = a.halfExtents.norm() * uniform(rng, 1.0, 1.2);
+            double simd[Lanes::kLanes], reference[Lanes::kLanes];
+            lanesDistanceLowerBound(lanes, a, radius, tolerance, simd);
+            lanesDistanceLowerBoundReference(lanes, a, radius, tolerance, reference);
+            for (int k = 0; k < count; ++k)
+            {
+                ASSERT_EQ(simd[k], reference[k]) << "scale " << scale << ", trial " << trial << ", lane " << k;
+                double nearestCorners = std::numeric_limits<double>::infinity();
+                for (const Vec3 &p : cornersOf(a))
+                    for (const Vec3 &q : cornersOf(lanes.box(k)))
+                        nearestCorners = std::min(nearestCorners, (p - q).norm());
+                ASSERT_LE(simd[k], nearestCorners * (1.0 + 1e-12)) << "scale " << scale << ", trial " << trial;
+                (simd[k] > 0.0 ? positive : zero) += 1;
+            }
+        }
+    EXPECT_GT(zero, 2000);
+    EXPECT_GT(positive, 2000);
+}
+
+template <class Lanes, class RandomBox>
+void expectEqualBoundsOnRandomBoxes(std::uint64_t seed, RandomBox randomOf)
+{
+    forEachTarget([&] { expectEqualBoundsOnRandomBoxesWithTheChosenTarget<Lanes>(seed, randomOf); });
+}
 }  // namespace
+
+TEST(ObbLanes, DistanceBoundsEqualTheScalarBoundsOnRandomBoxes)
+{
+    expectEqualBoundsOnRandomBoxes<ObbLanes>(45, randomBox);
+}
+
+TEST(AabbLanes, DistanceBoundsEqualTheScalarBoundsOnRandomBoxes)
+{
+    expectEqualBoundsOnRandomBoxes<AabbLanes>(47, randomAabb);
+}
+
+TEST(ObbLanes, DistanceBoundsOfBoxesApartAlongAFaceOrAnEdge)
+{
+    for (const double scale : {1e-6, 1.0, 1e6})
+    {
+        const Obb a = axisBox(Vec3::Zero(), scale * Vec3(1, 1, 1));
+        const double r = scale * std::sqrt(3.0);
+        ObbLanes lanes;
+        lanes.add(axisBox(scale * Vec3(2.5, 0.5, 0), scale * Vec3(1, 1, 1)), r, 0);  // faces 0.5 apart
+        // Turned 45 degrees about z: its edge 0.25 from a's face x = 1.
+        lanes.add(axisBox(scale * Vec3(1.25 + std::sqrt(2.0), 0, 0), scale * Vec3(1, 1, 1), turnAboutZ(M_PI / 4)), r,
+                  1);
+        lanes.add(a, r, 2);                                                      // the same box
+        lanes.add(axisBox(scale * Vec3(0, 0, 3), scale * Vec3(1, 1, 1)), r, 3);  // faces 1 apart
+        lanes.fill();
+        double bound[ObbLanes::kLanes];
+        lanesDistanceLowerBound(lanes, a, r, 0.0, bound);
+        EXPECT_NEAR(bound[0], 0.5 * scale, 1e-12 * scale);
+        EXPECT_NEAR(bound[1], 0.25 * scale, 1e-12 * scale);
+        EXPECT_EQ(bound[2], 0.0);
+        EXPECT_NEAR(bound[3], 1.0 * scale, 1e-12 * scale);
+        // A tolerance comes off every positive bound.
+        lanesDistanceLowerBound(lanes, a, r, 0.1 * scale, bound);
+        EXPECT_NEAR(bound[0], 0.4 * scale, 1e-12 * scale);
+        EXPECT_EQ(bound[2], 0.0);
+    }
+}
 
 TEST(ObbLanes, AgreesWithTheScalarTestsOnRandomBoxes) { expectAgreementOnRandomBoxes<ObbLanes>(41, randomBox); }
 

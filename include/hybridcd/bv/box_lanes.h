@@ -69,6 +69,19 @@ unsigned lanesOverlap(const AabbLanes &lanes, const Aabb &a, double aRadius, dou
 unsigned lanesOverlapReference(const ObbLanes &lanes, const Obb &a, double aRadius, double tolerance);
 unsigned lanesOverlapReference(const AabbLanes &lanes, const Aabb &a, double aRadius, double tolerance);
 
+/// Lower bounds on the distance from `a` to each lane's box, bound[k] for k < count (the rest of
+/// bound[0 .. kLanes) is overwritten with unspecified values): the larger of the sphere gap (centres'
+/// distance minus both radii and `tolerance`) and obbDistanceLowerBound(a, box, tolerance) with all
+/// its stages, in the same arithmetic, so the same numbers as lanesDistanceLowerBoundReference.
+void lanesDistanceLowerBound(const ObbLanes &lanes, const Obb &a, double aRadius, double tolerance, double *bound);
+/// The same with aabbDistanceLowerBound.
+void lanesDistanceLowerBound(const AabbLanes &lanes, const Aabb &a, double aRadius, double tolerance, double *bound);
+/// lanesDistanceLowerBound lane by lane with the scalar bounds: the kernels' reference.
+void lanesDistanceLowerBoundReference(const ObbLanes &lanes, const Obb &a, double aRadius, double tolerance,
+                                      double *bound);
+void lanesDistanceLowerBoundReference(const AabbLanes &lanes, const Aabb &a, double aRadius, double tolerance,
+                                      double *bound);
+
 /// The lanes of a volume type, if it has them: boxes of that type four at a time.
 template <class Volume>
 struct LanesOf

@@ -20,24 +20,24 @@ inline constexpr int kMaxPairChildren = 8;
 /// pair lies beyond it. Expands only pairs whose bound is below the best distance found yet, and
 /// stops at the first pair whose bound reaches it, so it is exact whenever the bounds are lower
 /// bounds:
-/// - `bound(pair, best)`: a lower bound on the distance between the pair's contents; it may return
-///   any value >= best once it knows the pair is beyond best (a cheap early out);
+/// - `rootBound`: a lower bound on the distance between the root pair's contents;
+/// - `boundedSplit(pair, best, out)`: for a pair that is not a pair of leaves, writes its child
+///   pairs with lower bounds on their contents' distances (at most kMaxPairChildren; a bound may be
+///   any value >= best once the child is known to lie beyond best) and returns their number;
 /// - `leafDistance(pair, best)`: for a pair of leaves, the smaller of best and their contents' exact
 ///   distance;
-/// - `split(pair, children)`: for any other pair, writes its child pairs (at most kMaxPairChildren)
-///   and returns their number; only called when the pair is not a pair of leaves;
 /// - `isLeafPair(pair)`.
 /// The nearest child goes on directly, without a trip through the queue, when nothing queued is
 /// nearer. `queue` is scratch from the caller's query context.
-template <class Bound, class IsLeafPair, class LeafDistance, class Split>
-double bestFirstDistance(NearestPairQueue &queue, Bound &&bound, IsLeafPair &&isLeafPair, LeafDistance &&leafDistance,
-                         Split &&split)
+template <class IsLeafPair, class LeafDistance, class BoundedSplit>
+double bestFirstDistanceBounded(NearestPairQueue &queue, double rootBound, IsLeafPair &&isLeafPair,
+                                LeafDistance &&leafDistance, BoundedSplit &&boundedSplit)
 {
     double best = std::numeric_limits<double>::infinity();
     queue.clear();
-    BoundedPair current{{0, 0}, bound(NodePair{0, 0}, best)};
+    BoundedPair current{{0, 0}, rootBound};
     bool haveCurrent = true;
-    NodePair children[kMaxPairChildren];
+    BoundedPair children[kMaxPairChildren];
     while (haveCurrent || !queue.empty())
     {
         if (!haveCurrent)
@@ -50,13 +50,13 @@ double bestFirstDistance(NearestPairQueue &queue, Bound &&bound, IsLeafPair &&is
             best = leafDistance(current.pair, best);
             continue;
         }
-        const int count = split(current.pair, children);
-        // Each child's bound once; the nearest is kept aside, the rest queued unless already beyond.
+        const int count = boundedSplit(current.pair, best, children);
+        // The nearest child is kept aside, the rest queued unless already beyond.
         BoundedPair nearest{{0, 0}, std::numeric_limits<double>::infinity()};
         bool haveNearest = false;
         for (int k = 0; k < count; ++k)
         {
-            BoundedPair child{children[k], bound(children[k], best)};
+            const BoundedPair &child = children[k];
             if (child.bound >= best)
                 continue;
             if (!haveNearest || child.bound < nearest.bound)
@@ -80,6 +80,24 @@ double bestFirstDistance(NearestPairQueue &queue, Bound &&bound, IsLeafPair &&is
             queue.push(nearest);
     }
     return best;
+}
+
+/// bestFirstDistanceBounded with each child's bound from `bound(pair, best)` (a lower bound; any
+/// value >= best once it knows the pair is beyond best, a cheap early out) and the children from
+/// `split(pair, children)` (writes at most kMaxPairChildren, returns their number).
+template <class Bound, class IsLeafPair, class LeafDistance, class Split>
+double bestFirstDistance(NearestPairQueue &queue, Bound &&bound, IsLeafPair &&isLeafPair, LeafDistance &&leafDistance,
+                         Split &&split)
+{
+    const double rootBound = bound(NodePair{0, 0}, std::numeric_limits<double>::infinity());
+    return bestFirstDistanceBounded(queue, rootBound, isLeafPair, leafDistance,
+                                    [&](const NodePair &pair, double best, BoundedPair *out) {
+                                        NodePair children[kMaxPairChildren];
+                                        const int count = split(pair, children);
+                                        for (int k = 0; k < count; ++k)
+                                            out[k] = {children[k], bound(children[k], best)};
+                                        return count;
+                                    });
 }
 
 /// A leaf pair's part of leafDistance: the smaller of `best` and the distances between the placed
