@@ -60,19 +60,23 @@ double rotationAngle(const Mat3 &a, const Mat3 &b)
 }
 }  // namespace
 
-TEST(SweptDistance, FalseProvesEveryRobotPointIsBeyondItsReach)
+namespace
 {
-    const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
-    const TriangleMesh &robot = *problem.robot.mesh, &environment = *problem.world.mesh;
+// For every checker over `scene`: where withinSweptDistance says false at a pose, no robot surface
+// sample comes within its reach (translation slack up to maxSlack, radial up to maxRadial), and
+// bruteforce finds no collision; both answers are common; with no slack it is the collision query.
+void expectFalseProvesEveryPointBeyondItsReach(const CollisionScene &scene, const std::vector<RigidTransform> &poses,
+                                               double maxSlack, double maxRadial, std::uint64_t seed)
+{
+    const TriangleMesh &robot = *scene.robot, &environment = *scene.environment;
     const double radius = robot.radiusAboutOrigin();
     const std::vector<Vec3> samples = surfaceSamples(robot, 4);
-    test::TestRandom rng(test::seeded(31));
-    const auto poses = test::randomPoses(problem, 240, rng);
-    std::uniform_real_distribution<double> slack(0.0, 0.5), radial(0.0, 0.03);
-    const auto reference = makeChecker("bruteforce", problem.scene);
+    test::TestRandom rng(test::seeded(seed));
+    std::uniform_real_distribution<double> slack(0.0, maxSlack), radial(0.0, maxRadial);
+    const auto reference = makeChecker("bruteforce", scene);
     for (const std::string &name : CheckerCatalogue::builtIn().names())
     {
-        const auto checker = makeChecker(name, problem.scene);
+        const auto checker = makeChecker(name, scene);
         std::size_t proven = 0, notProven = 0;
         for (const RigidTransform &pose : poses)
         {
@@ -95,6 +99,33 @@ TEST(SweptDistance, FalseProvesEveryRobotPointIsBeyondItsReach)
         for (std::size_t i = 0; i < 40; ++i)
             EXPECT_EQ(checker->withinSweptDistance(poses[i], 0.0, 0.0, radius), reference->collides(poses[i])) << name;
     }
+}
+}  // namespace
+
+TEST(SweptDistance, FalseProvesEveryRobotPointIsBeyondItsReach)
+{
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
+    test::TestRandom rng(test::seeded(31));
+    const auto poses = test::randomPoses(problem, 240, rng);
+    expectFalseProvesEveryPointBeyondItsReach(problem.scene, poses, 0.5, 0.03, 31);
+}
+
+TEST(SweptDistance, FalseProvesEveryPointBeyondItsReachForARobotLargerThanItsEnvironment)
+{
+    // The window as the robot and the small block as the environment: the traversal splits the
+    // robot's nodes from the root down, so the robot's boxes are tested four at a time with the
+    // largest reach among them.
+    const LoadedProblem problem = loadProblem(test::sourcePath("problems/window_3d.cfg"));
+    CollisionScene swapped = problem.scene;
+    std::swap(swapped.robot, swapped.environment);
+    ASSERT_GT(swapped.robot->triangleCount(), 2 * swapped.environment->triangleCount());
+    test::TestRandom rng(test::seeded(37));
+    // The window turned about its own origin within a third of its size of the block.
+    std::vector<RigidTransform> poses;
+    std::uniform_real_distribution<double> offset(-20.0, 20.0);
+    for (int i = 0; i < 240; ++i)
+        poses.push_back({test::randomRotation(rng), Vec3(offset(rng), offset(rng), offset(rng))});
+    expectFalseProvesEveryPointBeyondItsReach(swapped, poses, 0.5, 0.03, 37);
 }
 
 TEST(SweptDistance, CertifiedMotionIntervalsAreFreeUnderDenseSampling)
