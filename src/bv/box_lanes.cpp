@@ -370,10 +370,7 @@ unsigned lanesOverlapReference(const AabbLanes &lanes, const Aabb &a, double aRa
     return referenceBits(lanes, a, aRadius, tolerance,
                          [](const Aabb &x, const Aabb &y, double t) { return aabbsOverlap(x, y, t); });
 }
-}  // namespace hcd
 
-namespace hcd
-{
 void lanesDistanceLowerBound(const ObbLanes &lanes, const Obb &a, double aRadius, double tolerance, double *bound)
 {
     HWY_DYNAMIC_DISPATCH(ObbLanesDistance)(lanes, a, aRadius, tolerance, bound);

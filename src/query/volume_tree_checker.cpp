@@ -446,20 +446,17 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
         }
         if constexpr (LanesOf<Volume>::kUsed)
         {
-            // Where the environment node is split (childPairs' rule; in lockstep, with the robot
-            // node's), its boxes two levels down are tested at once against the robot node (each
-            // robot child), by the same sphere and separating-axis tests; the pairs that may
-            // overlap are pushed as tested, in the order childPairs would visit them.
-            const bool splitsEnvironment = !en.isLeaf() && (rn.isLeaf() || (!lockstep_ && rn.radius < en.radius));
-            const bool splitsBoth = lockstep_ && !en.isLeaf() && !rn.isLeaf();
-            if (!lanesOfNode_.empty() && (splitsEnvironment || splitsBoth) && lanesOfNode_[pair.environment] >= 0)
+            // The boxes two levels below the node split are tested at once, by the same sphere and
+            // separating-axis tests; the pairs that may overlap are pushed as tested, in the order
+            // childPairs would visit them.
+            const LaneSplit split = laneSplit(pair);
+            if (split.kind == LaneSplit::Kind::Environment)
             {
-                const auto &lanes = environmentLanes_[std::size_t(lanesOfNode_[pair.environment])];
+                const auto &lanes = *split.environmentLanes;
                 // Robot children last first, so that the first comes off the stack first.
-                const int robotCount = splitsBoth ? 2 : 1;
-                for (int i = robotCount - 1; i >= 0; --i)
+                for (int i = split.eachRobotChild ? 1 : 0; i >= 0; --i)
                 {
-                    const std::uint32_t r = splitsBoth ? std::uint32_t(rn.firstChild + i) : pair.robot;
+                    const std::uint32_t r = split.eachRobotChild ? std::uint32_t(rn.firstChild + i) : pair.robot;
                     const unsigned overlapping = lanesOverlap(lanes, placed.volume(r), rNodes[r].radius,
                                                               tolerance + slack.at(robotNodeReach_[r]));
                     boxTests += std::uint64_t(lanes.count);
@@ -469,14 +466,11 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 }
                 continue;
             }
-            // Where the robot node is split instead, the same with the robot's boxes two levels down,
-            // placed in world once per query, against the environment node.
-            const bool splitsRobot = !rn.isLeaf() && (en.isLeaf() || (!lockstep_ && rn.radius >= en.radius));
-            if (!robotBlockOfNode_.empty() && splitsRobot && robotBlockOfNode_[pair.robot] >= 0)
+            if (split.kind == LaneSplit::Kind::Robot)
             {
-                const std::size_t b = std::size_t(robotBlockOfNode_[pair.robot]);
-                const RobotBlock &block = robotBlocks_[b];
-                const auto &lanes = placed.lanes(b, block.node, block.count);
+                // The robot's boxes, placed in world once per query, against the environment node.
+                const RobotBlock &block = robotBlocks_[split.robotBlock];
+                const auto &lanes = placed.lanes(split.robotBlock, block.node, block.count);
                 const unsigned overlapping =
                     lanesOverlap(lanes, en.volume, en.radius, tolerance + slack.at(block.reach));
                 boxTests += std::uint64_t(lanes.count);
@@ -509,6 +503,32 @@ std::vector<ContactPair> VolumeTreeChecker<Volume>::doContacts(const RigidTransf
             c.environmentElement = environmentFaces_.source(c.environmentElement);
         }
     return found;
+}
+
+template <class Volume>
+typename VolumeTreeChecker<Volume>::LaneSplit VolumeTreeChecker<Volume>::laneSplit(const NodePair &pair) const
+{
+    LaneSplit split;
+    const typename VolumeTree<Volume>::Node &rn = robotTree_.nodes()[pair.robot];
+    const typename VolumeTree<Volume>::Node &en = environmentTree_.nodes()[pair.environment];
+    // childPairs' rule: both nodes in lockstep, else the one with the larger circumscribed sphere
+    // (the robot's when the environment's is a leaf).
+    const bool both = lockstep_ && !rn.isLeaf() && !en.isLeaf();
+    if (both || (!en.isLeaf() && (rn.isLeaf() || rn.radius < en.radius)))
+    {
+        if (!lanesOfNode_.empty() && lanesOfNode_[pair.environment] >= 0)
+        {
+            split.kind = LaneSplit::Kind::Environment;
+            split.environmentLanes = &environmentLanes_[std::size_t(lanesOfNode_[pair.environment])];
+            split.eachRobotChild = both;
+        }
+    }
+    else if (!rn.isLeaf() && !robotBlockOfNode_.empty() && robotBlockOfNode_[pair.robot] >= 0)
+    {
+        split.kind = LaneSplit::Kind::Robot;
+        split.robotBlock = std::size_t(robotBlockOfNode_[pair.robot]);
+    }
+    return split;
 }
 
 template <class Volume>
@@ -635,14 +655,13 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
                 }
                 out[count++] = {{r, e}, bound};
             };
-            const bool splitsEnvironment = !en.isLeaf() && (rn.isLeaf() || (!lockstep_ && rn.radius < en.radius));
-            const bool splitsBoth = lockstep_ && !en.isLeaf() && !rn.isLeaf();
-            if (!lanesOfNode_.empty() && (splitsEnvironment || splitsBoth) && lanesOfNode_[p.environment] >= 0)
+            const LaneSplit split = laneSplit(p);
+            if (split.kind == LaneSplit::Kind::Environment)
             {
-                const auto &lanes = environmentLanes_[std::size_t(lanesOfNode_[p.environment])];
-                for (int i = 0; i < (splitsBoth ? 2 : 1); ++i)
+                const auto &lanes = *split.environmentLanes;
+                for (int i = 0; i < (split.eachRobotChild ? 2 : 1); ++i)
                 {
-                    const std::uint32_t r = splitsBoth ? std::uint32_t(rn.firstChild + i) : p.robot;
+                    const std::uint32_t r = split.eachRobotChild ? std::uint32_t(rn.firstChild + i) : p.robot;
                     lanesDistanceLowerBound(lanes, placed.volume(r), rNodes[r].radius, tolerance, bounds);
                     boxTests += std::uint64_t(lanes.count);
                     for (int k = 0; k < lanes.count; ++k)
@@ -650,12 +669,10 @@ double VolumeTreeChecker<Volume>::freeDistance(const RigidTransform &worldFromRo
                 }
                 return count;
             }
-            const bool splitsRobot = !rn.isLeaf() && (en.isLeaf() || (!lockstep_ && rn.radius >= en.radius));
-            if (!robotBlockOfNode_.empty() && splitsRobot && robotBlockOfNode_[p.robot] >= 0)
+            if (split.kind == LaneSplit::Kind::Robot)
             {
-                const std::size_t b = std::size_t(robotBlockOfNode_[p.robot]);
-                const RobotBlock &block = robotBlocks_[b];
-                const auto &lanes = placed.lanes(b, block.node, block.count);
+                const RobotBlock &block = robotBlocks_[split.robotBlock];
+                const auto &lanes = placed.lanes(split.robotBlock, block.node, block.count);
                 lanesDistanceLowerBound(lanes, en.volume, en.radius, tolerance, bounds);
                 boxTests += std::uint64_t(lanes.count);
                 for (int k = 0; k < lanes.count; ++k)

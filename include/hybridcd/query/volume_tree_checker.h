@@ -101,6 +101,24 @@ private:
     /// The child pairs of a pair that is not two leaves, in the order to visit them (the larger
     /// node's children, or all four in lockstep); returns their number.
     int childPairs(const NodePair &pair, NodePair *children) const;
+    /// Where a pair that is not two leaves is split through lanes, by childPairs' rule: the
+    /// environment's block at its environment node, tested against the robot node or, in lockstep,
+    /// against each of the robot node's two children; or the robot's block at its robot node. None
+    /// where the node split has no block (childPairs splits it then).
+    struct LaneSplit
+    {
+        enum class Kind
+        {
+            None,
+            Environment,
+            Robot
+        };
+        Kind kind = Kind::None;
+        const typename LanesOf<Volume>::Type *environmentLanes = nullptr;
+        bool eachRobotChild = false;  ///< Environment: against the robot node's two children
+        std::size_t robotBlock = 0;   ///< Robot: robotBlocks_[robotBlock]
+    };
+    LaneSplit laneSplit(const NodePair &pair) const;
     /// The leaf test of every pair query: whether robot triangle rt, placed as `a`, and environment
     /// triangle et touch (no proximity: the exact intersection test) or come within the slack at
     /// rt's reach (proximity), after an exact axis-aligned reject; `tests` counts the exact tests.
