@@ -17,10 +17,10 @@ void closestPointsOfSegments(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, con
 double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, const Vec3 &q1);
 
 /// Distance between two closed triangles: 0 when they intersect (decided exactly), otherwise the
-/// smallest of the vertex-to-triangle and edge-to-edge distances, in floating point (relative error a
-/// few ulps of the coordinates' magnitude). The edge pairs are measured in full, endpoints included:
-/// they also measure every vertex's distance to the other's edges robustly, where the vertex-to-
-/// triangle regions of a sliver are not.
+/// smallest of the vertex-to-face and edge-to-edge distances (triangle_features.h, the reference
+/// arithmetic), in floating point (relative error a few ulps of the coordinates' magnitude). The
+/// edge pairs are measured in full, endpoints included: they also measure every vertex's distance to
+/// the other's edges robustly, where the inside test of a sliver is not.
 double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2);
 
 /// triangleDistance, bit for bit, for two triangles known not to intersect (e.g. after a collision
@@ -28,17 +28,14 @@ double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
 double disjointTriangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                                 const Vec3 &b2);
 
-/// `min(best, disjointTriangleDistance(a, b))`, bit for bit, with less work when `best` is small:
-/// a vertex or edge whose distance the triangles' planes already put beyond `best` (with a margin far
-/// above rounding) is not measured; with `best` infinite, the first vertex's distance serves as it (when finite).
-/// For branch and bound over triangle pairs.
+/// `min(best, disjointTriangleDistance(a, b))`, bit for bit, with less work: the fifteen features
+/// measured in SIMD lanes (triangleFeaturesSquared). For branch and bound over triangle pairs.
 double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                                      const Vec3 &b2, double best);
 
 /// `triangleDistance(a, b) <= bound`, the same answer in every case, decided with less work: a
-/// separating plane first, then the vertex and edge distances (skipping those the planes put beyond
-/// the bound, stopping at the first within it), and the exact intersection test only when neither
-/// settles it. For proximity queries.
+/// separating plane first, then the vertex and edge distances in SIMD lanes, and the exact
+/// intersection test only when neither settles it. For proximity queries.
 bool trianglesWithinDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
                              const Vec3 &b2, double bound);
 }  // namespace hcd
