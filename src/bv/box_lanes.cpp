@@ -26,7 +26,7 @@ using M = hn::Mask<D>;
 
 // Whether the spheres about the centres (offset `gap` = a's centre minus the lane's) are farther
 // apart than the radii and the tolerance: the traversal's first test.
-M SpheresApart(D d, const V gap[3], double aRadius, const double *radius, V tol)
+HWY_INLINE M SpheresApart(D d, const V gap[3], double aRadius, const double *radius, V tol)
 {
     const V reach = hn::Add(hn::Add(hn::Set(d, aRadius), hn::LoadU(d, radius)), tol);
     const V squared = hn::Add(hn::Add(hn::Mul(gap[0], gap[0]), hn::Mul(gap[1], gap[1])), hn::Mul(gap[2], gap[2]));
@@ -34,10 +34,10 @@ M SpheresApart(D d, const V gap[3], double aRadius, const double *radius, V tol)
 }
 
 // Number f of the lanes from `base` on.
-V Field(D d, const ObbLanes &lanes, int f, std::size_t base) { return hn::LoadU(d, lanes.field[f] + base); }
+HWY_INLINE V Field(D d, const ObbLanes &lanes, int f, std::size_t base) { return hn::LoadU(d, lanes.field[f] + base); }
 
 // Lanes [base, base + Lanes(d)) as bits at their own positions.
-unsigned BitsAt(D d, M m, std::size_t base)
+HWY_INLINE unsigned BitsAt(D d, M m, std::size_t base)
 {
     std::uint8_t bits[8] = {};
     hn::StoreMaskBits(d, m, bits);
@@ -50,7 +50,7 @@ struct LaneFrame
 {
     V gap[3], t[3], r[3][3], ea[3], eb[3];
 
-    LaneFrame(D d, const ObbLanes &lanes, const Obb &a, std::size_t base)
+    HWY_INLINE LaneFrame(D d, const ObbLanes &lanes, const Obb &a, std::size_t base)
     {
         for (int c = 0; c < 3; ++c)
             gap[c] = hn::Sub(hn::Set(d, a.center[c]), Field(d, lanes, ObbLanes::kCenter + c, base));
@@ -148,7 +148,7 @@ unsigned SeparatedAabbLanes(const AabbLanes &lanes, const Aabb &a, double aRadiu
 
 // The sphere gap |ca - cb| - (aRadius + radius) - tolerance per lane, as the distance search
 // computes it.
-V SphereGap(D d, const V gap[3], double aRadius, const double *radius, V tol)
+HWY_INLINE V SphereGap(D d, const V gap[3], double aRadius, const double *radius, V tol)
 {
     const V reach = hn::Add(hn::Add(hn::Set(d, aRadius), hn::LoadU(d, radius)), tol);
     const V squared = hn::Add(hn::Add(hn::Mul(gap[0], gap[0]), hn::Mul(gap[1], gap[1])), hn::Mul(gap[2], gap[2]));

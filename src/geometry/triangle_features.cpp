@@ -24,10 +24,13 @@ using D = hn::CappedTag<double, 4>;
 using V = hn::Vec<D>;
 
 // u . v with its three products added left to right, as the reference adds them.
-V Dot(const V u[3], const V v[3]) { return hn::Add(hn::Add(hn::Mul(u[0], v[0]), hn::Mul(u[1], v[1])), hn::Mul(u[2], v[2])); }
+HWY_INLINE V Dot(const V u[3], const V v[3])
+{
+    return hn::Add(hn::Add(hn::Mul(u[0], v[0]), hn::Mul(u[1], v[1])), hn::Mul(u[2], v[2]));
+}
 
 // x clamped to [0, 1] by the comparisons the reference makes (so that NaN and -0 go alike).
-V Clamp01(D d, V x)
+HWY_INLINE V Clamp01(D d, V x)
 {
     const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
     x = hn::IfThenElse(hn::Gt(x, zero), x, zero);
@@ -36,7 +39,7 @@ V Clamp01(D d, V x)
 
 // Squared distances of the points in the lanes of p to the triangle t (corners as rows), where a
 // point projects inside it; +infinity in the others.
-V VertexFace(D d, const V p[3], const double (&t)[3][3])
+HWY_INLINE V VertexFace(D d, const V p[3], const double (&t)[3][3])
 {
     V ab[3], ac[3], ap[3], bp[3], cp[3];
     for (int c = 0; c < 3; ++c)
@@ -63,7 +66,7 @@ V VertexFace(D d, const V p[3], const double (&t)[3][3])
 }
 
 // Squared distances of the segment p0 + s d1 (s in [0, 1]) to the segments in the lanes of q0, d2.
-V EdgeEdge(D d, const V p0[3], const V d1[3], const V q0[3], const V d2[3])
+HWY_INLINE V EdgeEdge(D d, const V p0[3], const V d1[3], const V q0[3], const V d2[3])
 {
     const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
     V r[3];
@@ -71,8 +74,8 @@ V EdgeEdge(D d, const V p0[3], const V d1[3], const V q0[3], const V d2[3])
         r[c] = hn::Sub(p0[c], q0[c]);
     const V a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, r), c = Dot(d1, r), b = Dot(d1, d2);
     const V denom = hn::Sub(hn::Mul(a, e), hn::Mul(b, b));
-    const V sGeneral = hn::IfThenElseZero(
-        hn::Gt(denom, zero), Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom)));
+    const V sGeneral =
+        hn::IfThenElseZero(hn::Gt(denom, zero), Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom)));
     const V tGeneral = hn::Div(hn::Add(hn::Mul(b, sGeneral), f), e);
     const V sLow = Clamp01(d, hn::Div(hn::Neg(c), a));
     const V sHigh = Clamp01(d, hn::Div(hn::Sub(b, c), a));
@@ -232,8 +235,8 @@ double edgeEdge(const double *p0, const double *d1, const double *q0, const doub
 constexpr double kLaneMagnitude = 1e75;
 }  // namespace
 
-double triangleFeaturesSquaredReference(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0,
-                                        const Vec3 &b1, const Vec3 &b2)
+double triangleFeaturesSquaredReference(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                                        const Vec3 &b2)
 {
     Corners a, b;
     copyCorners(a0, a1, a2, a);

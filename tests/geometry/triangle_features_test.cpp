@@ -115,7 +115,8 @@ TEST(TriangleFeatures, LanesAreTheReferenceBitForBitUnderEveryInstructionSet)
 TEST(TriangleFeatures, NonFiniteCornersGiveTheReferenceValue)
 {
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-    Pair p = {Triangle{Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1)}, Triangle{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}};
+    Pair p = {Triangle{Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1)},
+              Triangle{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}};
     EXPECT_EQ(lanes(p), 1.0);
     for (const double bad : {nan, inf, -inf})
     {
@@ -139,8 +140,9 @@ double independentSquared(const Pair &p)
     }
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            best = std::min(best, hcd::segmentSegmentDistanceSquared(p[0][std::size_t(i)], p[0][std::size_t((i + 1) % 3)],
-                                                                     p[1][std::size_t(j)], p[1][std::size_t((j + 1) % 3)]));
+            best = std::min(best,
+                            hcd::segmentSegmentDistanceSquared(p[0][std::size_t(i)], p[0][std::size_t((i + 1) % 3)],
+                                                               p[1][std::size_t(j)], p[1][std::size_t((j + 1) % 3)]));
     return best;
 }
 

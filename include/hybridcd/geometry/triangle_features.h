@@ -24,6 +24,6 @@ double triangleFeaturesSquared(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, c
 
 /// triangleFeaturesSquared's arithmetic one feature at a time in scalar code: the same number, bit
 /// for bit, for every input (features that come out NaN are passed over).
-double triangleFeaturesSquaredReference(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0,
-                                        const Vec3 &b1, const Vec3 &b2);
+double triangleFeaturesSquaredReference(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
+                                        const Vec3 &b2);
 }  // namespace hcd
