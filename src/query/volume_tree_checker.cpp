@@ -366,10 +366,11 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
         // Circumscribed spheres first (a few flops), then the separating-axis test. Growing the
         // tolerance by delta keeps every pair closer than delta (the axes have length <= 1).
         using Traits = VolumeTraits<Volume>;
-        const Volume &robotVolume = placed.volume(pair.robot);
-        const double delta = slack.at(robotNodeReach_[pair.robot]);
         if (!tested)
         {
+            // (A pair the lanes tested needs neither its robot volume in world nor its slack.)
+            const Volume &robotVolume = placed.volume(pair.robot);
+            const double delta = slack.at(robotNodeReach_[pair.robot]);
             ++boxTests;
             const double reach = rn.radius + en.radius + tolerance + delta;
             if ((Traits::center(robotVolume) - Traits::center(en.volume)).squaredNorm() > reach * reach ||
@@ -383,7 +384,8 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 // Overlapping leaf spheres put the solids within the sum of their bounds (plus the
                 // test's tolerance) of each other: small enough, that decides (approximate mode).
                 if (leafTolerance_ && !proximity && !found &&
-                    robotVolume.approximationBound() + en.volume.approximationBound() + tolerance <= *leafTolerance_)
+                    placed.volume(pair.robot).approximationBound() + en.volume.approximationBound() + tolerance <=
+                        *leafTolerance_)
                 {
                     hit = true;
                     continue;
