@@ -58,6 +58,27 @@ bool segmentIntersectsTriangle2d(const Projection &pr, const Vec3 &p, const Vec3
            segmentsIntersect2d(pr, p, q, b, c) || segmentsIntersect2d(pr, p, q, c, a);
 }
 
+// Whether some edge line of t (non-degenerate in the projection) has every vertex of o strictly on
+// the side away from t: for two coplanar closed triangles the only way to be disjoint (separating
+// axes: disjoint convex polygons have a strictly separating line parallel to an edge of one).
+// `own` is orient2dProjected of t's corners in order.
+bool separatedByAnEdge2d(const Projection &pr, const Vec3 *const t[3], int own, const Vec3 *const o[3])
+{
+    for (int i = 0; i < 3; ++i)
+    {
+        const Vec3 &p = *t[i], &q = *t[(i + 1) % 3];
+        bool outside = true;
+        for (int j = 0; j < 3 && outside; ++j)
+        {
+            const int side = orient2dProjected(pr, p, q, *o[j]);
+            outside = side != 0 && side != own;
+        }
+        if (outside)
+            return true;
+    }
+    return false;
+}
+
 // A coordinate plane onto which the non-degenerate triangle projects with non-zero area, so the
 // projection is one-to-one on the triangle's plane. The largest normal component is tried first.
 Projection faithfulProjection(const Vec3 &a, const Vec3 &b, const Vec3 &c)
@@ -86,6 +107,40 @@ bool segmentCrossesTriangle(const Vec3 &p, const Vec3 &q, int sideP, int sideQ, 
     const bool anyNegative = o1 < 0 || o2 < 0 || o3 < 0;
     return !(anyPositive && anyNegative);
 }
+// Whether an edge of x (its corners' exact sides sx of y's plane) meets the non-degenerate
+// triangle y: segmentCrossesTriangle for each edge, with each vertex on the plane tested once. An
+// edge with one end on the plane meets it only there, so that end's test decides it; an edge in
+// the plane meets y iff an end lies in y or it crosses an edge of y; an edge with ends strictly on
+// opposite sides takes the line test.
+bool edgesMeetTriangle(const Vec3 *const x[3], const int sx[3], const Vec3 &a, const Vec3 &b, const Vec3 &c)
+{
+    bool projected = false;
+    Projection pr(0);
+    const auto projection = [&]() -> const Projection & {
+        if (!projected)
+            pr = faithfulProjection(a, b, c);
+        projected = true;
+        return pr;
+    };
+    for (int i = 0; i < 3; ++i)
+        if (sx[i] == 0 && pointInTriangle2d(projection(), *x[i], a, b, c))
+            return true;
+    for (int i = 0; i < 3; ++i)
+    {
+        const int j = (i + 1) % 3;
+        const Vec3 &p = *x[i], &q = *x[j];
+        if (sx[i] == 0 && sx[j] == 0)
+        {
+            if (segmentsIntersect2d(projection(), p, q, a, b) || segmentsIntersect2d(projection(), p, q, b, c) ||
+                segmentsIntersect2d(projection(), p, q, c, a))
+                return true;
+        }
+        else if (sx[i] * sx[j] < 0 && segmentCrossesTriangle(p, q, sx[i], sx[j], a, b, c))
+            return true;
+    }
+    return false;
+}
+
 // Two triangles each of which has one vertex strictly on one side of the other's plane and two
 // strictly on the other (sa: a's sides of b's plane, orient3d(b0, b1, b2, a_i); sb: b's of a's).
 // Devillers and Guigue, "Faster triangle-triangle intersection tests" (2002): with each triangle
@@ -199,8 +254,13 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
         // Non-finite input makes every sign zero and lands here or above: report it as touching.
         if (anyNonFinite({&a0, &a1, &a2, &b0, &b1, &b2}))
             return true;
-        // Coplanar: edges cross, or one triangle holds a vertex of the other.
+        // Coplanar: they meet iff no edge line of either separates them. The projection is one to
+        // one on the common plane, so both project with non-zero area.
         const Projection pr = faithfulProjection(a0, a1, a2);
+        const int ownA = orient2dProjected(pr, a0, a1, a2), ownB = orient2dProjected(pr, b0, b1, b2);
+        if (ownA != 0 && ownB != 0)
+            return !separatedByAnEdge2d(pr, a, ownA, b) && !separatedByAnEdge2d(pr, b, ownB, a);
+        // (Unreachable for non-degenerate coplanar triangles: edges cross, or one holds a vertex.)
         const Vec3 *ea[3][2] = {{&a0, &a1}, {&a1, &a2}, {&a2, &a0}};
         const Vec3 *eb[3][2] = {{&b0, &b1}, {&b1, &b2}, {&b2, &b0}};
         for (auto &x : ea)
@@ -216,10 +276,6 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
         return straddlingTrianglesIntersect(a, sa, b, sb);
 
     // General position: an edge of one triangle meets the other triangle.
-    return segmentCrossesTriangle(a0, a1, sa0, sa1, b0, b1, b2) ||
-           segmentCrossesTriangle(a1, a2, sa1, sa2, b0, b1, b2) ||
-           segmentCrossesTriangle(a2, a0, sa2, sa0, b0, b1, b2) ||
-           segmentCrossesTriangle(b0, b1, sb0, sb1, a0, a1, a2) ||
-           segmentCrossesTriangle(b1, b2, sb1, sb2, a0, a1, a2) || segmentCrossesTriangle(b2, b0, sb2, sb0, a0, a1, a2);
+    return edgesMeetTriangle(a, sa, b0, b1, b2) || edgesMeetTriangle(b, sb, a0, a1, a2);
 }
 }  // namespace hcd
