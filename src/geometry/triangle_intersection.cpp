@@ -210,15 +210,24 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
     if (filteredSides(planeB, a0, a1, a2, sa))
         return false;
     const Vec3 *b[3] = {&b0, &b1, &b2}, *a[3] = {&a0, &a1, &a2};
+    // A sign the filter left open is orient3d()'s; four points sharing one coordinate exactly are
+    // coplanar (what orient3d() concludes after its own filter fails again), the common case of
+    // robots and walls of one height.
+    const auto sideOf = [](const Vec3 &p0, const Vec3 &p1, const Vec3 &p2, const Vec3 &q) {
+        for (int k = 0; k < 3; ++k)
+            if (p0[k] == q[k] && p1[k] == q[k] && p2[k] == q[k])
+                return 0;
+        return orient3d(p0, p1, p2, q);
+    };
     for (int i = 0; i < 3; ++i)
         if (sb[i] == 0)
-            sb[i] = orient3d(a0, a1, a2, *b[i]);
+            sb[i] = sideOf(a0, a1, a2, *b[i]);
     const int sb0 = sb[0], sb1 = sb[1], sb2 = sb[2];
     if ((sb0 > 0 && sb1 > 0 && sb2 > 0) || (sb0 < 0 && sb1 < 0 && sb2 < 0))
         return false;
     for (int i = 0; i < 3; ++i)
         if (sa[i] == 0)
-            sa[i] = orient3d(b0, b1, b2, *a[i]);
+            sa[i] = sideOf(b0, b1, b2, *a[i]);
     const int sa0 = sa[0], sa1 = sa[1], sa2 = sa[2];
     if ((sa0 > 0 && sa1 > 0 && sa2 > 0) || (sa0 < 0 && sa1 < 0 && sa2 < 0))
         return false;
