@@ -65,6 +65,14 @@ HWY_INLINE V VertexFace(D d, const V p[3], const double (&t)[3][3])
     return hn::IfThenElse(inside, Dot(gap, gap), hn::Set(d, std::numeric_limits<double>::infinity()));
 }
 
+// u x v, component by component as the reference writes it.
+HWY_INLINE void Cross(const V u[3], const V v[3], V out[3])
+{
+    out[0] = hn::Sub(hn::Mul(u[1], v[2]), hn::Mul(u[2], v[1]));
+    out[1] = hn::Sub(hn::Mul(u[2], v[0]), hn::Mul(u[0], v[2]));
+    out[2] = hn::Sub(hn::Mul(u[0], v[1]), hn::Mul(u[1], v[0]));
+}
+
 // Squared distances of the segment p0 + s d1 (s in [0, 1]) to the segments in the lanes of q0, d2.
 HWY_INLINE V EdgeEdge(D d, const V p0[3], const V d1[3], const V q0[3], const V d2[3])
 {
@@ -73,9 +81,14 @@ HWY_INLINE V EdgeEdge(D d, const V p0[3], const V d1[3], const V q0[3], const V 
     for (int c = 0; c < 3; ++c)
         r[c] = hn::Sub(p0[c], q0[c]);
     const V a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, r), c = Dot(d1, r), b = Dot(d1, d2);
-    const V denom = hn::Sub(hn::Mul(a, e), hn::Mul(b, b));
-    const V sGeneral =
-        hn::IfThenElseZero(hn::Gt(denom, zero), Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom)));
+    // The lines' nearest point on the first, from cross products (see edgeEdge).
+    V g[3], n[3], w[3];
+    for (int k = 0; k < 3; ++k)
+        g[k] = hn::Neg(r[k]);
+    Cross(d1, d2, n);
+    Cross(g, d2, w);
+    const V denom = Dot(n, n);
+    const V sGeneral = hn::IfThenElseZero(hn::Gt(denom, zero), Clamp01(d, hn::Div(Dot(w, n), denom)));
     const V tGeneral = hn::Div(hn::Add(hn::Mul(b, sGeneral), f), e);
     const V sLow = Clamp01(d, hn::Div(hn::Neg(c), a));
     const V sHigh = Clamp01(d, hn::Div(hn::Sub(b, c), a));
@@ -92,6 +105,10 @@ HWY_INLINE V EdgeEdge(D d, const V p0[3], const V d1[3], const V q0[3], const V 
     return Dot(gap, gap);
 }
 
+// x where it is below `least`, else `least` (NaN passed over, as the reference does). A function,
+// not a lambda: clang's target attributes do not reach lambdas without HWY_ATTR.
+HWY_INLINE V Lesser(V x, V least) { return hn::IfThenElse(hn::Lt(x, least), x, least); }
+
 double TriangleFeaturesSquared(const double (&a)[3][3], const double (&b)[3][3])
 {
     const D d;
@@ -106,7 +123,6 @@ double TriangleFeaturesSquared(const double (&a)[3][3], const double (&b)[3][3])
             bEdge[c][k] = b[(k + 1) % 3][c] - b[k % 3][c];
         }
     V least = hn::Set(d, std::numeric_limits<double>::infinity());
-    const auto keep = [&](V x) { least = hn::IfThenElse(hn::Lt(x, least), x, least); };
     for (std::size_t base = 0; base < 3; base += hn::Lanes(d))
     {
         V p[3], q[3], edge[3];
@@ -116,8 +132,8 @@ double TriangleFeaturesSquared(const double (&a)[3][3], const double (&b)[3][3])
             q[c] = hn::LoadU(d, bVertex[c] + base);
             edge[c] = hn::LoadU(d, bEdge[c] + base);
         }
-        keep(VertexFace(d, p, b));
-        keep(VertexFace(d, q, a));
+        least = Lesser(VertexFace(d, p, b), least);
+        least = Lesser(VertexFace(d, q, a), least);
         for (int i = 0; i < 3; ++i)
         {
             V p0[3], d1[3];
@@ -126,7 +142,7 @@ double TriangleFeaturesSquared(const double (&a)[3][3], const double (&b)[3][3])
                 p0[c] = hn::Set(d, a[i][c]);
                 d1[c] = hn::Set(d, a[(i + 1) % 3][c] - a[i][c]);
             }
-            keep(EdgeEdge(d, p0, d1, q, edge));
+            least = Lesser(EdgeEdge(d, p0, d1, q, edge), least);
         }
     }
     double lanes[4];
@@ -151,6 +167,13 @@ namespace
 using Corners = double[3][3];
 
 double dot(const double *u, const double *v) { return (u[0] * v[0] + u[1] * v[1]) + u[2] * v[2]; }
+
+void cross(const double *u, const double *v, double *out)
+{
+    out[0] = u[1] * v[2] - u[2] * v[1];
+    out[1] = u[2] * v[0] - u[0] * v[2];
+    out[2] = u[0] * v[1] - u[1] * v[0];
+}
 
 double clamp01(double x)
 {
@@ -209,8 +232,17 @@ double edgeEdge(const double *p0, const double *d1, const double *q0, const doub
             s = sLow;
         else
         {
-            const double b = dot(d1, d2), denom = a * e - b * b;
-            s = denom > 0.0 ? clamp01((b * f - c * e) / denom) : 0.0;
+            // The lines' nearest point on the first: ((q0 - p0) x d2) . n / |n|^2 with n = d1 x d2,
+            // which is (b f - c e) / (a e - b^2) (Lagrange's identity) without that difference's
+            // cancellation: for edges 1e-9 from parallel it moved the point by up to 1e-8 of their
+            // length (TriangleFeatures.NearlyParallelEdgesAgainstExactRationals).
+            const double b = dot(d1, d2);
+            const double g[3] = {-r[0], -r[1], -r[2]};
+            double n[3], w[3];
+            cross(d1, d2, n);
+            cross(g, d2, w);
+            const double denom = dot(n, n);
+            s = denom > 0.0 ? clamp01(dot(w, n) / denom) : 0.0;
             t = (b * s + f) / e;
             if (t < 0.0)
             {

@@ -18,7 +18,9 @@ double segmentSegmentDistanceSquared(const Vec3 &p0, const Vec3 &p1, const Vec3 
 
 /// Distance between two closed triangles: 0 when they intersect (decided exactly), otherwise the
 /// smallest of the vertex-to-face and edge-to-edge distances (triangle_features.h, the reference
-/// arithmetic), in floating point (relative error a few ulps of the coordinates' magnitude). The
+/// arithmetic), in floating point: never below the true distance by more than a few ulps of the
+/// coordinates' magnitude, nor above it except through a sliver's inside test
+/// (triangle_features.h). The
 /// edge pairs are measured in full, endpoints included: they also measure every vertex's distance to
 /// the other's edges robustly, where the inside test of a sliver is not.
 double triangleDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2);
