@@ -79,8 +79,13 @@ void closestPointsOfSegments(const Vec3 &p0, const Vec3 &p1, const Vec3 &q0, con
             s = std::clamp(-c / a, 0.0, 1.0);
         else
         {
-            const double b = d1.dot(d2), denom = a * e - b * b;
-            s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+            // The lines' nearest point on the first from cross products, ((q0 - p0) x d2) . n / |n|^2
+            // with n = d1 x d2: Ericson's (b f - c e) / (a e - b^2) by Lagrange's identity, without
+            // the cancellation that loses it for nearly parallel segments (triangle_features.cpp).
+            const double b = d1.dot(d2);
+            const Vec3 n = d1.cross(d2);
+            const double denom = n.squaredNorm();
+            s = denom > 0.0 ? std::clamp((-r).cross(d2).dot(n) / denom, 0.0, 1.0) : 0.0;
             t = (b * s + f) / e;
             if (t < 0.0)
             {

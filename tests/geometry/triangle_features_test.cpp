@@ -3,8 +3,9 @@
 // as the scalar reference under every instruction set compiled in, on random, nearly coplanar,
 // lattice, sliver, degenerate (segment and point) and far-out triangles at scales 1e-9 to 1e80; the
 // reference against an independent formulation (the closest point on the triangle by its Voronoi
-// regions, and the segments' closest points) within rounding; and against the exact distance in
-// rational arithmetic where edges are nearly parallel.
+// regions, and the segments' closest points) within rounding; and, with the public segment
+// distance of triangle_distance.h, against the exact distance in rational arithmetic where edges
+// are nearly parallel.
 #include "hybridcd/geometry/triangle_distance.h"
 #include "hybridcd/geometry/triangle_features.h"
 #include "hybridcd/geometry/triangle_intersection.h"
@@ -288,5 +289,31 @@ TEST(TriangleFeatures, NearlyParallelEdgesAgainstExactRationals)
         ASSERT_NEAR(std::sqrt(lanes(p)), truth, 1e-13 * scale) << "pair " << checked;
     }
     EXPECT_GT(checked, 300u);
+}
+
+// The public segment distance (capsules, swept spheres) on segments 1e-6 to 1e-13 from parallel,
+// crossing or just apart, against the exact distance: to 1e-13 of the scale.
+TEST(SegmentDistance, NearlyParallelSegmentsAgainstExactRationals)
+{
+    hcd::test::TestRandom rng(hcd::test::seeded(2904));
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), angle(6.0, 13.0);
+    const auto point = [&] { return Vec3(unit(rng), unit(rng), unit(rng)); };
+    int checked = 0;
+    for (const double scale : {1e-3, 1.0, 1e3})
+        for (int i = 0; i < 400; ++i)
+        {
+            const Vec3 p0 = scale * point(), p1 = scale * point();
+            const Vec3 gap = scale * std::pow(10.0, -angle(rng)) * point();
+            const double tilt = scale * std::pow(10.0, -angle(rng));
+            const Vec3 q0 = p0 + gap + tilt * point(), q1 = p1 + gap + tilt * point();
+            const double magnitude = std::max({p0.cwiseAbs().maxCoeff(), p1.cwiseAbs().maxCoeff(),
+                                               q0.cwiseAbs().maxCoeff(), q1.cwiseAbs().maxCoeff()});
+            const double truth =
+                std::sqrt(exactSegmentsSquared(exact(p0), exact(p1), exact(q0), exact(q1)).convert_to<double>());
+            ASSERT_NEAR(std::sqrt(hcd::segmentSegmentDistanceSquared(p0, p1, q0, q1)), truth, 1e-13 * magnitude)
+                << "segment pair " << checked;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 1200);
 }
 }  // namespace
