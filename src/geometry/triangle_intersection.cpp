@@ -263,20 +263,12 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
         // Non-finite input makes every sign zero and lands here or above: report it as touching.
         if (anyNonFinite({&a0, &a1, &a2, &b0, &b1, &b2}))
             return true;
-        // Coplanar: they meet iff no edge line of either separates them. The projection is one to
-        // one on the common plane, so both project with non-zero area.
+        // Coplanar: they meet iff no edge line of either separates them. Neither is degenerate
+        // (above) and the projection is one to one on the common plane, so both project with
+        // non-zero area: neither orientation is 0.
         const Projection pr = faithfulProjection(a0, a1, a2);
         const int ownA = orient2dProjected(pr, a0, a1, a2), ownB = orient2dProjected(pr, b0, b1, b2);
-        if (ownA != 0 && ownB != 0)
-            return !separatedByAnEdge2d(pr, a, ownA, b) && !separatedByAnEdge2d(pr, b, ownB, a);
-        // (Unreachable for non-degenerate coplanar triangles: edges cross, or one holds a vertex.)
-        const Vec3 *ea[3][2] = {{&a0, &a1}, {&a1, &a2}, {&a2, &a0}};
-        const Vec3 *eb[3][2] = {{&b0, &b1}, {&b1, &b2}, {&b2, &b0}};
-        for (auto &x : ea)
-            for (auto &y : eb)
-                if (segmentsIntersect2d(pr, *x[0], *x[1], *y[0], *y[1]))
-                    return true;
-        return pointInTriangle2d(pr, a0, b0, b1, b2) || pointInTriangle2d(pr, b0, a0, a1, a2);
+        return !separatedByAnEdge2d(pr, a, ownA, b) && !separatedByAnEdge2d(pr, b, ownB, a);
     }
 
     // Each triangle strictly straddles the other's plane (no vertex on it), the common case:
