@@ -28,7 +28,11 @@ inline constexpr int kMaxPairChildren = 8;
 ///   distance;
 /// - `isLeafPair(pair)`.
 /// The nearest child goes on directly, without a trip through the queue, when nothing queued is
-/// nearer. `queue` is scratch from the caller's query context.
+/// nearer. A child that is a pair of leaves, with its bound below the best, is measured at once
+/// instead of queued: measuring costs little more than the trip through the queue, most such pairs
+/// would be measured later anyway, and an early measure lowers the best for the pairs after it
+/// (clearance on alpha-1.5 and bugtrap 6% fewer instructions, 9% less time; bench/README.md,
+/// section 1). `queue` is scratch from the caller's query context.
 template <class IsLeafPair, class LeafDistance, class BoundedSplit>
 double bestFirstDistanceBounded(NearestPairQueue &queue, double rootBound, IsLeafPair &&isLeafPair,
                                 LeafDistance &&leafDistance, BoundedSplit &&boundedSplit)
@@ -59,6 +63,11 @@ double bestFirstDistanceBounded(NearestPairQueue &queue, double rootBound, IsLea
             const BoundedPair &child = children[k];
             if (child.bound >= best)
                 continue;
+            if (isLeafPair(child.pair))
+            {
+                best = leafDistance(child.pair, best);  // at once: see above
+                continue;
+            }
             if (!haveNearest || child.bound < nearest.bound)
             {
                 if (haveNearest)
