@@ -349,21 +349,11 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         return poseOfState(state, planar);
     };
     Report report;
-    // A contact at `at` with [0, lastFree] proven free; it also blocks the motion there when the
-    // bracket is within the tolerance (or when blocking is all that was asked for).
-    const auto contact = [&](double lastFree, double at) {
-        report.lastFree = lastFree;
-        report.contactFound = true;
-        report.contactAt = at;
-        report.blocked = true;
-        report.blockedAt = at;
-        return report;
-    };
-    // s1 is tested even when the verdict took it as valid: it anchors the certified prefix (surfaces
-    // kept apart from a free state keep the robot free), and the last valid state comes from it.
+    // s1 anchors the certified prefix (surfaces kept apart from a free state keep the robot free),
+    // and the last valid state comes from it. The verdict before this search tested it when asked
+    // (a colliding s1 is then the known contact at 0, bracketed below at once), or took it as valid,
+    // as checkMotion's contract has it: not tested again.
     const RigidTransform p1 = poseOfState(s1, planar);
-    if (validity_->poseCollides(p1, *context))
-        return contact(0.0, 0.0);
     if (applyBounds_ && !si->satisfiesBounds(s2))
         return report;  // refused, no contact
     const RigidTransform p2 = poseOfState(s2, planar);

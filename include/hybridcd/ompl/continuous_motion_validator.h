@@ -58,9 +58,9 @@ public:
     /// On failure, lastValid.first (if not null) receives a collision-free state on the motion and
     /// lastValid.second its fraction in [0, 1): [0, lastValid.second] is proven free, and the motion
     /// is blocked (a contact or a near contact, see Report) within the contact tolerance after it.
-    /// The first contact's search tests s1 itself whatever setStartChecked says (the exact first
-    /// contact of a translation tests the last valid state instead): it anchors the proven-free
-    /// prefix. A contact at or before setUnwantedLastValidBelow's fraction ends the search
+    /// s1 anchors the proven-free prefix: it is tested when setStartChecked says so (the first
+    /// contact is then s1 itself if it collides), else taken as valid, as the verdict takes it
+    /// (checkMotion's contract). A contact at or before setUnwantedLastValidBelow's fraction ends the search
     /// earlier, with the bracket left open (see there).
     bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                      std::pair<ompl::base::State *, double> &lastValid) const override;
@@ -152,7 +152,7 @@ private:
     /// The first-contact search (checkMotionDetailed and checkMotion with a last valid state).
     /// `knownContact`, when at most 1, is a fraction where the robot is known to collide: the
     /// search is then confined to the motion before it.
-    /// s1 is always tested here.
+    /// s1 is not tested here: the verdict before it tested s1 or took it as valid.
     /// `unwantedBelow`: the search also stops once a colliding state at or before it is known
     /// (setUnwantedLastValidBelow), with the bracket left open.
     Report certify(const ompl::base::State *s1, const ompl::base::State *s2, double knownContact = 2.0,
