@@ -193,8 +193,9 @@ void ObbLanesDistance(const ObbLanes &lanes, const Obb &a, double aRadius, doubl
         const V centres = hn::Sqrt(hn::Add(hn::Add(hn::Mul(t[0], t[0]), hn::Mul(t[1], t[1])), hn::Mul(t[2], t[2])));
         const M apart = hn::Gt(centres, zero);
         V axis[3];
+        const V inverse = hn::Div(one, centres);
         for (int i = 0; i < 3; ++i)
-            axis[i] = hn::Div(t[i], centres);
+            axis[i] = hn::Mul(t[i], inverse);
         V inA2 = zero;
         for (int j = 0; j < 3; ++j)
         {
@@ -207,7 +208,9 @@ void ObbLanesDistance(const ObbLanes &lanes, const Obb &a, double aRadius, doubl
                                hn::Mul(eb[2], hn::Abs(axis[2])));
         const V alongCentres = hn::Sub(hn::Sub(centres, inB2), inA2);
         result = hn::IfThenElse(hn::And(apart, hn::Lt(result, alongCentres)), alongCentres, result);
-        // The nine edge-edge axes, in the same order; nearly parallel edges skipped.
+        // The nine edge-edge axes, in the same order; nearly parallel edges skipped. The largest gap
+        // by squares, then one division and one root (as obbDistanceLowerBound).
+        V bestExcess = result, bestLengthSquared = one;
         for (int i = 0; i < 3; ++i)
         {
             const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
@@ -221,11 +224,14 @@ void ObbLanesDistance(const ObbLanes &lanes, const Obb &a, double aRadius, doubl
                                     hn::Mul(ea[j1], absR[i][j2])),
                             hn::Mul(ea[j2], absR[i][j1]));
                 const V excess = hn::Sub(along, halfWidths);
-                const V length = hn::Sqrt(hn::Max(lengthSquared, zero));
-                const M larger = hn::And(hn::Gt(lengthSquared, parallel), hn::Gt(excess, hn::Mul(result, length)));
-                result = hn::IfThenElse(larger, hn::Div(excess, length), result);
+                const M larger = hn::And(hn::And(hn::Gt(lengthSquared, parallel), hn::Gt(excess, zero)),
+                                         hn::Gt(hn::Mul(hn::Mul(excess, excess), bestLengthSquared),
+                                                hn::Mul(hn::Mul(bestExcess, bestExcess), lengthSquared)));
+                bestExcess = hn::IfThenElse(larger, excess, bestExcess);
+                bestLengthSquared = hn::IfThenElse(larger, lengthSquared, bestLengthSquared);
             }
         }
+        result = hn::Max(result, hn::Div(bestExcess, hn::Sqrt(bestLengthSquared)));
         result = hn::Max(zero, hn::Sub(result, tol));
         hn::StoreU(hn::Max(sphereGap, result), d, bound + base);
     }

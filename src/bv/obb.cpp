@@ -166,7 +166,7 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance, doubl
     const double centres = std::sqrt(sum3(t[0], t[0], t[1], t[1], t[2], t[2]));
     if (centres > 0.0)
     {
-        const Vec3 axis = t / centres;  // b's frame
+        const Vec3 axis = t * (1.0 / centres);  // b's frame (one division, as the SIMD lanes do)
         const double widthB = sum3(hb[0], std::fabs(axis[0]), hb[1], std::fabs(axis[1]), hb[2], std::fabs(axis[2]));
         double widthA = 0.0;
         for (int j = 0; j < 3; ++j)
@@ -180,7 +180,11 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance, doubl
     }
     // The nine edge-edge axes b_i x a_j (in b's frame e_i x r.col(j)), of length sin(angle): the
     // gap along an unnormalised axis L is (|t . L| - a's and b's half widths along L) / |L|. Flat
-    // boxes (one triangle each) in skew poses are often farthest apart along one of these.
+    // boxes (one triangle each) in skew poses are often farthest apart along one of these. The
+    // largest is found by comparing squares (positive excesses only), so that only the winner is
+    // divided and rooted: every axis's gap is a lower bound, and a comparison that rounds,
+    // overflows or underflows can only pick a smaller one.
+    double bestExcess = gap, bestLengthSquared = 1.0;
     for (int i = 0; i < 3; ++i)
     {
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
@@ -194,10 +198,14 @@ double obbDistanceLowerBound(const Obb &a, const Obb &b, double tolerance, doubl
             const double halfWidths =
                 hb[i1] * absR(i2, j) + hb[i2] * absR(i1, j) + ha[j1] * absR(i, j2) + ha[j2] * absR(i, j1);
             const double excess = along - halfWidths;
-            if (excess > gap * std::sqrt(lengthSquared))
-                gap = excess / std::sqrt(lengthSquared);
+            if (excess > 0.0 && excess * excess * bestLengthSquared > bestExcess * bestExcess * lengthSquared)
+            {
+                bestExcess = excess;
+                bestLengthSquared = lengthSquared;
+            }
         }
     }
+    gap = std::max(gap, bestExcess / std::sqrt(bestLengthSquared));
     return std::max(0.0, gap - tolerance);
 }
 }  // namespace hcd

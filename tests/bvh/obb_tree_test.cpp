@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "support/test_support.h"
 
+#include "hybridcd/bv/box_lanes.h"
 #include "hybridcd/bvh/volume_tree.h"
 #include "hybridcd/io/mesh_loader.h"
 #include "hybridcd/narrowphase/gjk.h"
@@ -265,6 +266,51 @@ TEST(ObbDistance, LowerBoundNeverExceedsTheDistance)
     }
     EXPECT_GT(separated, test::cases(4000) / 2);
     EXPECT_GT(tight, separated / 2);  // a bound that is not idle
+}
+
+// Two thin rods whose nearest points are on their long edges, apart along the edges' common
+// perpendicular, which is a face axis of neither box: only the edge-edge axis gives a tight bound.
+// The edge axes are compared by squares, so at tiny scales, where those squares underflow, the bound
+// may only lose tightness, never exceed the distance; above that it finds the axis, up to the
+// scales distances are computed at (about 1e75: triangle distances multiply four coordinates). The
+// SIMD lanes give the same number.
+TEST(ObbDistance, EdgeAxisBoundAtHugeAndTinyScales)
+{
+    const Vec3 u = Vec3(-1, 1, 0).normalized(), v = Vec3(1, 1, -2).normalized();
+    const Vec3 f1 = Vec3(1, 1, 1).normalized();
+    const double phi = 0.5;  // the rod's cross axes turned away from u
+    const Vec3 f2 = std::cos(phi) * u + std::sin(phi) * v, f3 = f1.cross(f2);
+    for (const double scale : {1e-165, 1e-160, 1e-150, 1e-100, 1e-6, 1.0, 1e6, 1e40, 1e75})
+    {
+        SCOPED_TRACE(scale);
+        const double thin = 1e-3, gapBetween = 0.5;
+        Obb a;
+        a.axes = Mat3::Identity();
+        a.center = Vec3::Zero();
+        a.halfExtents = scale * Vec3(thin, thin, 1.0);  // along z
+        Obb b;
+        b.axes.col(0) = f1;
+        b.axes.col(1) = f2;
+        b.axes.col(2) = f3;
+        b.halfExtents = scale * Vec3(1.0, thin, thin);  // along f1
+        // Slid along both rods (off the line through the centres, which would find the gap too); the
+        // nearest points stay inside both.
+        b.center = scale * ((gapBetween + 4.0 * thin) * u + 0.3 * f1 + 0.4 * Vec3(0, 0, 1));
+        // The distance of the rods' axes (segments) less both rods' reach across them bounds the
+        // boxes' distance from below; their axes' distance bounds it from above.
+        const double axesApart = scale * (gapBetween + 4.0 * thin);
+        const double bound = obbDistanceLowerBound(a, b, 0.0);
+        ASSERT_LE(bound, axesApart * (1.0 + 1e-12));
+        ASSERT_GE(bound, 0.0);
+        if (scale >= 1e-150)
+            EXPECT_GE(bound, axesApart - scale * 4.0 * thin * 1.8);  // the edge axis, not a face axis
+        ObbLanes lanes;
+        lanes.add(b, b.halfExtents.norm(), 0);
+        lanes.fill();
+        double simd[ObbLanes::kLanes];
+        lanesDistanceLowerBound(lanes, a, a.halfExtents.norm(), 0.0, simd);
+        EXPECT_EQ(simd[0], std::max(bound, (a.center - b.center).norm() - a.halfExtents.norm() - b.halfExtents.norm()));
+    }
 }
 
 // k-DOP trees build each parent from its children's slabs: every node's volume is still fit() of
