@@ -195,11 +195,14 @@ TEST(PoseMetric, OnlyOmplsOwnPoseSpaces)
 }
 
 // The bounds a leaf's poses get side by side: never above OMPL's distance, and within rounding of
-// the box bound over the pose alone, for random poses, near turns and yaws at the wrap.
+// the box bound over the pose alone, for random poses, near turns and yaws at the wrap. The
+// translation's test (translationBeyond) rules a pose out only when its bound and distance are
+// beyond the bar.
 TEST(PoseMetric, PointBoundsBoundOmplsDistance)
 {
     test::TestRandom rng(61);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int ruledOut = 0;
     for (const bool planar : {false, true})
     {
         const ob::StateSpacePtr space = planar ? ob::StateSpacePtr(se2Space(50)) : ob::StateSpacePtr(se3Space(50));
@@ -227,14 +230,25 @@ TEST(PoseMetric, PointBoundsBoundOmplsDistance)
             metric.pointLowerBounds(q, points.data(), points.size(), bounds.data());
             for (std::size_t i = 0; i < points.size(); ++i)
             {
-                EXPECT_LE(bounds[i], space->distance(query, states[i])) << "pose " << i;
+                const double distance = space->distance(query, states[i]);
+                EXPECT_LE(bounds[i], distance) << "pose " << i;
                 const double box = metric.lowerBound(q, points[i].data(), points[i].data());
                 EXPECT_NEAR(bounds[i], box, 1e-12 * (1.0 + box)) << "pose " << i;
+                // The translation's test rules out only poses beyond the bar, and most of those
+                // far beyond it.
+                for (const double enough : {0.25 * distance, 0.999 * distance, distance, 2.0 * distance})
+                    if (metric.translationBeyond(q, points[i], enough))
+                    {
+                        EXPECT_GT(distance, enough) << "pose " << i;
+                        EXPECT_GT(bounds[i], enough) << "pose " << i;
+                        ++ruledOut;
+                    }
             }
         }
         for (StatePtr s : states)
             space->freeState(s);
     }
+    EXPECT_GT(ruledOut, 1000);  // a test that is not idle
 }
 
 TEST(PoseNearestNeighbors, SpatialPosesMatchLinearSearch)

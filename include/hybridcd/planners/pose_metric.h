@@ -105,6 +105,19 @@ public:
         }
     }
 
+    /// Whether the translation's part alone puts `point` beyond `enough`: the test lowerBound
+    /// returns early on (squares compared with slack, only where they neither overflow nor
+    /// underflow), so a pose it rules out has a lower bound above `enough` as well. It spares a
+    /// search the rotation's part (two square roots) for most poses of a leaf.
+    bool translationBeyond(const PoseCoordinates &p, const std::array<double, 7> &point, double enough) const
+    {
+        const auto &v = p.values;
+        const double dx = v[0] - point[0], dy = v[1] - point[1], dz = planar_ ? 0.0 : v[2] - point[2];
+        const double squared = dx * dx + dy * dy + dz * dz;
+        return enough > 1e-150 && enough < 1e150 &&
+               translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack);
+    }
+
     /// dimensions() weights that make a coordinate's spread comparable with the others' when
     /// choosing where to split: the translation weight, then the rotation's.
     double spreadWeight(int dimension) const;

@@ -314,14 +314,16 @@ private:
             {
                 // A pose's own coordinates bound its distance as a box does: measured only if
                 // the bound leaves it a chance (the bound costs a fraction of OMPL's distance).
-                double pointBounds[kLeafCapacity];
-                for (std::size_t first = 0; first < node.items.size(); first += kLeafCapacity)
+                // Most poses of a leaf are ruled out by their translation alone, without the
+                // rotation's part.
+                for (std::size_t i = 0; i < node.items.size(); ++i)
                 {
-                    const std::size_t count = std::min(kLeafCapacity, node.items.size() - first);
-                    metric_.pointLowerBounds(query, node.points.data() + first, count, pointBounds);
-                    for (std::size_t i = 0; i < count; ++i)
-                        if (!(pointBounds[i] > bar()))
-                            consider(node.items[first + i]);
+                    if (metric_.translationBeyond(query, node.points[i], bar()))
+                        continue;
+                    double pointBound;
+                    metric_.pointLowerBounds(query, &node.points[i], 1, &pointBound);
+                    if (!(pointBound > bar()))
+                        consider(node.items[i]);
                 }
                 continue;
             }
