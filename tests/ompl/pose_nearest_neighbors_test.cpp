@@ -194,6 +194,50 @@ TEST(PoseMetric, OnlyOmplsOwnPoseSpaces)
     EXPECT_FALSE(PoseMetric::of(two));
 }
 
+// A gap along one coordinate rules out a box only along a translation coordinate, and only when the
+// box's own bound is beyond the bar too: boxes on the far side of a split, whatever their other
+// coordinates, with translation weights from 1e-3 to 1e3.
+TEST(PoseMetric, CoordinateGapRulesOutOnlyWhatTheBoxBoundDoes)
+{
+    test::TestRandom rng(67);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int ruledOut = 0;
+    for (const bool planar : {false, true})
+        for (const double weight : {1e-3, 1.0, 1e3})
+        {
+            ob::StateSpacePtr space = planar ? ob::StateSpacePtr(se2Space(50)) : ob::StateSpacePtr(se3Space(50));
+            space->as<ob::CompoundStateSpace>()->setSubspaceWeight(0, weight);
+            const PoseMetric metric = *PoseMetric::of(*space);
+            ob::State *state = space->allocState();
+            space->allocDefaultStateSampler()->sampleUniform(state);
+            const PoseCoordinates q = metric.coordinates(state);
+            space->freeState(state);
+            for (int trial = 0; trial < 2000; ++trial)
+            {
+                const int d = int(unit(rng) * metric.dimensions()) % metric.dimensions();
+                std::array<double, 7> low{}, high{};
+                for (int k = 0; k < metric.dimensions(); ++k)
+                {
+                    const double a = q.values[std::size_t(k)] + (unit(rng) - 0.5) * (k < 3 ? 100.0 : 2.0);
+                    const double b = a + unit(rng) * (k < 3 ? 10.0 : 0.5);
+                    low[std::size_t(k)] = a;
+                    high[std::size_t(k)] = b;
+                }
+                // The box beyond a split at q + gap along d.
+                const double gap = unit(rng) * 30.0;
+                low[std::size_t(d)] = q.values[std::size_t(d)] + gap;
+                high[std::size_t(d)] = std::max(high[std::size_t(d)], low[std::size_t(d)]);
+                const double enough = weight * unit(rng) * 40.0;
+                if (!metric.coordinateGapBeyond(d, gap, enough))
+                    continue;
+                ++ruledOut;
+                ASSERT_LT(d, planar ? 2 : 3);
+                EXPECT_GT(metric.lowerBound(q, low.data(), high.data()), enough) << "trial " << trial;
+            }
+        }
+    EXPECT_GT(ruledOut, 1000);
+}
+
 // The bounds a leaf's poses get side by side: never above OMPL's distance, and within rounding of
 // the box bound over the pose alone, for random poses, near turns and yaws at the wrap. The
 // translation's test (translationBeyond) rules a pose out only when its bound and distance are

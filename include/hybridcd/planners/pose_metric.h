@@ -118,6 +118,15 @@ public:
                translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack);
     }
 
+    /// Whether a gap of `gap` along one coordinate puts every pose beyond `enough` on its own: true
+    /// only for a translation coordinate (a rotation's gap counts for q or -q), with slack for the
+    /// rounding of the bound that would include it.
+    bool coordinateGapBeyond(int dimension, double gap, double enough) const
+    {
+        return dimension < (planar_ ? 2 : 3) && enough > 0.0 && enough < 1e300 &&
+               translationWeight_ * gap > enough * (1.0 + kSquaredComparisonSlack);
+    }
+
     /// dimensions() weights that make a coordinate's spread comparable with the others' when
     /// choosing where to split: the translation weight, then the rotation's.
     double spreadWeight(int dimension) const;

@@ -327,6 +327,22 @@ private:
                 }
                 continue;
             }
+            // The first child's poses lie at or below the split value, the second's at or above it
+            // (build and insert keep them so): a child whose side of the split is beyond the bar by
+            // the query's gap to the split alone is left out without reading its box.
+            const double toSplit = query.values[std::size_t(node.splitDimension)] - node.splitValue;
+            const bool firstOut = metric_.coordinateGapBeyond(node.splitDimension, toSplit, bar());
+            const bool secondOut = metric_.coordinateGapBeyond(node.splitDimension, -toSplit, bar());
+            if (firstOut || secondOut)
+            {
+                if (!(firstOut && secondOut))
+                {
+                    Bounded only = boundOf(firstOut ? node.firstChild + 1 : node.firstChild);
+                    if (!beyondBar(only))
+                        stack.push_back(only);
+                }
+                continue;
+            }
             Bounded first = boundOf(node.firstChild);
             Bounded second = boundOf(node.firstChild + 1);
             // The nearer child on top (by translation alone where both bounds left their
