@@ -520,6 +520,18 @@ int SolidQuery::solidContaining(const Vec3 &p) const
     return -1;
 }
 
+bool SolidQuery::withinSolidBounds(const Vec3 &p) const
+{
+    const Index &index = *index_;
+    if (index.solids.empty() || !contains(index.bounds, p))
+        return false;
+    const std::size_t cell = index.cellIndex(index.x.cell(p.x()), index.y.cell(p.y()), index.z.cell(p.z()));
+    for (std::uint32_t k = index.cellStart[cell]; k < index.cellStart[cell + 1]; ++k)
+        if (contains(index.solids[index.cellSolids[k]].bounds, p))
+            return true;
+    return false;
+}
+
 bool SolidQuery::insideComponent(std::size_t component, const Vec3 &p) const
 {
     const std::int64_t solid = index_->solidOfComponent.at(component);

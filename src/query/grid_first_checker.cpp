@@ -60,7 +60,7 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
     {
         // The solid wrapper's indexes when the exact checker is one (as the catalogue makes it):
         // the same solids, found once.
-        const auto *wrapper = dynamic_cast<const SolidSemanticsChecker *>(exact_.get());
+        auto *wrapper = dynamic_cast<SolidSemanticsChecker *>(exact_.get());
         const SolidQuery environmentSolids = wrapper ? wrapper->environmentSolids() : SolidQuery(environment.mesh);
         robotSolids = wrapper ? wrapper->robotSolids() : SolidQuery(robot.mesh);
         robotHasSolids_ = robotSolids->closedComponentCount() > 0;
@@ -74,6 +74,10 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
         grid_ = ClearanceGrid(*environment.mesh, &environmentSolids,
                               robotHasSolids_ ? firstVertexOfEachComponent(environmentSolids) : std::vector<Vec3>{},
                               gridSettings);
+        // The wrapper's point-in-solid tests read the grid's labels first (its solids are the ones
+        // the cells were labelled with). This checker owns both and is never moved.
+        if (wrapper)
+            wrapper->useEnvironmentGrid(&grid_);
     }
     else
         grid_ = ClearanceGrid(*environment.mesh, nullptr, {}, gridSettings);

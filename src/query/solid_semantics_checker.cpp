@@ -1,8 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/query/solid_semantics_checker.h"
 
+#include <algorithm>
+
 namespace hcd
 {
+namespace
+{
+// Vertices per robot component the grid is asked about before rays are cast.
+constexpr std::size_t kRobotProbes = 8;
+}  // namespace
+
 SolidSemanticsChecker::SolidSemanticsChecker(std::unique_ptr<CollisionChecker> surface, const CollisionScene &scene)
     : surface_(std::move(surface)),
       environmentSolids_(scene.environment),
@@ -10,13 +18,40 @@ SolidSemanticsChecker::SolidSemanticsChecker(std::unique_ptr<CollisionChecker> s
       robotRepresentatives_(firstVertexOfEachComponent(robotSolids_)),
       environmentRepresentatives_(firstVertexOfEachComponent(environmentSolids_))
 {
+    // Vertices spread over each robot component, its representative first: near an obstacle some
+    // of them usually lie in cells the grid has proven outside.
+    const TriangleMesh &robot = robotSolids_.mesh();
+    for (const MeshComponent &component : robotSolids_.components())
+    {
+        if (component.triangles.empty())
+            continue;  // as firstVertexOfEachComponent skips it
+        std::vector<Vec3> probes;
+        const std::size_t count = component.triangles.size(), step = std::max<std::size_t>(1, count / kRobotProbes);
+        for (std::size_t i = 0; i < count && probes.size() < kRobotProbes; i += step)
+            probes.push_back(robot.corner(component.triangles[i], 0));
+        robotProbes_.push_back(std::move(probes));
+    }
+}
+
+bool SolidSemanticsChecker::robotComponentInside(const RigidTransform &worldFromRobot, std::size_t component) const
+{
+    const Vec3 representative = worldFromRobot.apply(robotRepresentatives_[component]);
+    if (!environmentSolids_.withinSolidBounds(representative))
+        return false;  // beyond every solid's box: no ray needed, nor the grid
+    // Rays can cost: through a vertex level with faces of the environment (planar scenes) they
+    // fall back to generic directions. A probe proven outside by the grid settles it first.
+    if (environmentGrid_)
+        for (const Vec3 &v : robotProbes_[component])
+            if (environmentGrid_->clears(worldFromRobot.apply(v), 0.0, /*outside=*/true))
+                return false;  // a point of it proven outside every solid: all of it is
+    return environmentSolids_.insideAnySolid(representative);
 }
 
 bool SolidSemanticsChecker::contained(const RigidTransform &worldFromRobot) const
 {
     if (environmentSolids_.closedComponentCount() > 0)
-        for (const Vec3 &v : robotRepresentatives_)
-            if (environmentSolids_.insideAnySolid(worldFromRobot.apply(v)))
+        for (std::size_t i = 0; i < robotRepresentatives_.size(); ++i)
+            if (robotComponentInside(worldFromRobot, i))
                 return true;
     if (robotSolids_.closedComponentCount() > 0)
     {

@@ -54,6 +54,10 @@ public:
     /// True if p is inside or on the surface of some closed component.
     bool insideAnySolid(const Vec3 &p) const { return solidContaining(p) >= 0; }
 
+    /// False when p lies outside the bounding box of every closed component, which rules out
+    /// insideAnySolid(p) without casting a ray; true otherwise.
+    bool withinSolidBounds(const Vec3 &p) const;
+
     /// Index into components() of a closed component containing p (inside or on its surface), or
     /// -1. When closed components nest or overlap, the lowest such index.
     int solidContaining(const Vec3 &p) const;

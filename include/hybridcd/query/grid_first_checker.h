@@ -57,6 +57,9 @@ public:
     /// `exact` answers with `semantics`; the grid is built over `scene.environment`.
     GridFirstChecker(std::unique_ptr<CollisionChecker> exact, const CollisionScene &scene, ContactSemantics semantics,
                      GridFirstSettings settings = {});
+    /// Not copied or moved: the wrapped checker reads this one's grid (useEnvironmentGrid).
+    GridFirstChecker(const GridFirstChecker &) = delete;
+    GridFirstChecker &operator=(const GridFirstChecker &) = delete;
 
     std::string name() const override { return exact_->name(); }
     std::vector<HierarchyReport> hierarchies(bool withVolumeRatios = false) const override;

@@ -9,6 +9,7 @@
 // which needs no consistent orientation (SketchUp files repeat faces reversed).
 #pragma once
 
+#include "hybridcd/bvh/clearance_grid.h"
 #include "hybridcd/geometry/solid_components.h"
 #include "hybridcd/query/collision_checker.h"
 
@@ -39,6 +40,14 @@ public:
 
     /// True when, the surfaces being disjoint, one object lies inside a solid of the other.
     bool contained(const RigidTransform &worldFromRobot) const;
+
+    /// Lets the point-in-solid tests read `grid` first: a clearance grid over this checker's
+    /// environment whose cells are labelled with environmentSolids() (GridFirstChecker builds one).
+    /// A robot component with one of its probe vertices (up to eight, spread over it) in a cell
+    /// proven outside every solid lies outside them all, its surfaces being apart; only the others
+    /// take ray parity. Null (the default) goes back to rays alone. The grid must stay alive and
+    /// unchanged while this checker answers.
+    void useEnvironmentGrid(const ClearanceGrid *grid) { environmentGrid_ = grid; }
 
     const SolidQuery &environmentSolids() const { return environmentSolids_; }
     const SolidQuery &robotSolids() const { return robotSolids_; }
@@ -82,7 +91,12 @@ private:
     std::unique_ptr<CollisionChecker> surface_;
     SolidQuery environmentSolids_;
     SolidQuery robotSolids_;
-    std::vector<Vec3> robotRepresentatives_;        ///< one vertex per robot component (robot frame)
+    /// Whether robot component `component` lies inside an environment solid (surfaces apart).
+    bool robotComponentInside(const RigidTransform &worldFromRobot, std::size_t component) const;
+
+    std::vector<Vec3> robotRepresentatives_;      ///< one vertex per robot component (robot frame)
+    std::vector<std::vector<Vec3>> robotProbes_;  ///< up to eight vertices of each robot component (robot frame)
+    const ClearanceGrid *environmentGrid_ = nullptr;
     std::vector<Vec3> environmentRepresentatives_;  ///< one vertex per environment component (world)
 };
 }  // namespace hcd
