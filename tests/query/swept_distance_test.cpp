@@ -260,13 +260,14 @@ TEST(SweptDistance, IntervalsCertifiedByTheirNearPairsAreFreeUnderDenseSampling)
         const RigidTransform b{turn.rotation * a.rotation, a.translation + Vec3(step(rng), step(rng), step(rng))};
         const double translationRate = (b.translation - a.translation).norm() * (1.0 + 1e-9);
         const double angleRate = rotationAngle(a.rotation, b.rotation) * (1.0 + 1e-9) + 1e-15;
-        // An interval [lo, hi] whose front is listed, and a part [lo2, hi2] of it.
+        // An interval [lo, hi] whose front is listed, and a part [lo2, hi2] of it (drawn first, so
+        // that the cases drawn do not depend on the checker's answers).
         const double lo = 0.5 * unit(rng), hi = lo + 0.5 * unit(rng), half = 0.5 * (hi - lo);
+        const double lo2 = lo + (hi - lo) * 0.5 * unit(rng), hi2 = lo2 + (hi - lo2) * unit(rng);
         std::vector<TrianglePair> front, near;
         if (!checker->listSweptNearPairs(interpolate(a, b, lo + half), translationRate * half, angleRate * half, 4096,
                                          front, context))
             continue;
-        const double lo2 = lo + (hi - lo) * 0.5 * unit(rng), hi2 = lo2 + (hi - lo2) * unit(rng);
         const double half2 = 0.5 * (hi2 - lo2);
         const RigidTransform middle = interpolate(a, b, lo2 + half2);
         if (checker->sweptNearPairsAmong(middle, translationRate * half2, angleRate * half2, front, near, context))
@@ -284,7 +285,9 @@ TEST(SweptDistance, IntervalsCertifiedByTheirNearPairsAreFreeUnderDenseSampling)
             ASSERT_FALSE(reference->collides(interpolate(a, b, lo2 + (hi2 - lo2) * k / 200)))
                 << "an interval certified by its near pairs collides at sample " << k;
     }
-    EXPECT_GT(certifiedByPairs, 10u);
+    // Not vacuous: about one start in ten certifies an interval by its pairs (fewer starts in
+    // sanitizer builds).
+    EXPECT_GT(certifiedByPairs, starts.size() / 40);
     EXPECT_GT(touchingSeen, 0u);
 }
 
