@@ -564,4 +564,20 @@ std::vector<Vec3> firstVertexOfEachComponent(const SolidQuery &solids)
             out.push_back(solids.mesh().corner(c.triangles.front(), 0));
     return out;
 }
+
+std::vector<std::vector<Vec3>> verticesSpreadOverEachComponent(const SolidQuery &solids, std::size_t perComponent)
+{
+    std::vector<std::vector<Vec3>> out;
+    for (const MeshComponent &c : solids.components())
+    {
+        if (c.triangles.empty())
+            continue;
+        std::vector<Vec3> probes;
+        const std::size_t count = c.triangles.size(), step = std::max<std::size_t>(1, count / perComponent);
+        for (std::size_t i = 0; i < count && probes.size() < perComponent; i += step)
+            probes.push_back(solids.mesh().corner(c.triangles[i], 0));
+        out.push_back(std::move(probes));
+    }
+    return out;
+}
 }  // namespace hcd

@@ -121,16 +121,8 @@ void GridFirstChecker::buildFootprint(const TriangleMesh &robot, const TriangleM
     footprintGrid_ = ClearanceGrid(near, nullptr, {}, settings);  // empty without triangles: all clear
     if (!robotSolids)
         return;
-    const TriangleMesh &solidMesh = robotSolids->mesh();
-    for (const MeshComponent &component : robotSolids->components())
-    {
-        // Eight vertices spread over the component: one of them is likely in a free cell.
-        std::vector<Vec3> probes;
-        const std::size_t count = component.triangles.size(), step = std::max<std::size_t>(1, count / 8);
-        for (std::size_t i = 0; i < count && probes.size() < 8; i += step)
-            probes.push_back(solidMesh.corner(component.triangles[i], 0));
-        componentProbes_.push_back(std::move(probes));
-    }
+    // Eight vertices spread over each component: one of them is likely in a free cell.
+    componentProbes_ = verticesSpreadOverEachComponent(*robotSolids, 8);
 }
 
 void GridFirstChecker::indexLeafTriangles()

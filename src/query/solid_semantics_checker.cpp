@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "hybridcd/query/solid_semantics_checker.h"
 
-#include <algorithm>
-
 namespace hcd
 {
 namespace
@@ -16,21 +14,11 @@ SolidSemanticsChecker::SolidSemanticsChecker(std::unique_ptr<CollisionChecker> s
       environmentSolids_(scene.environment),
       robotSolids_(scene.robot),
       robotRepresentatives_(firstVertexOfEachComponent(robotSolids_)),
-      environmentRepresentatives_(firstVertexOfEachComponent(environmentSolids_))
+      environmentRepresentatives_(firstVertexOfEachComponent(environmentSolids_)),
+      // Near an obstacle, some of a component's spread vertices usually lie in cells the grid has
+      // proven outside; the representative comes first.
+      robotProbes_(verticesSpreadOverEachComponent(robotSolids_, kRobotProbes))
 {
-    // Vertices spread over each robot component, its representative first: near an obstacle some
-    // of them usually lie in cells the grid has proven outside.
-    const TriangleMesh &robot = robotSolids_.mesh();
-    for (const MeshComponent &component : robotSolids_.components())
-    {
-        if (component.triangles.empty())
-            continue;  // as firstVertexOfEachComponent skips it
-        std::vector<Vec3> probes;
-        const std::size_t count = component.triangles.size(), step = std::max<std::size_t>(1, count / kRobotProbes);
-        for (std::size_t i = 0; i < count && probes.size() < kRobotProbes; i += step)
-            probes.push_back(robot.corner(component.triangles[i], 0));
-        robotProbes_.push_back(std::move(probes));
-    }
 }
 
 bool SolidSemanticsChecker::robotComponentInside(const RigidTransform &worldFromRobot, std::size_t component) const

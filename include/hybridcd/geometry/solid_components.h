@@ -82,4 +82,9 @@ private:
 /// One vertex of each non-empty component of the query's mesh, in components() order: a point
 /// that decides, once surfaces are disjoint, on which side of every solid the component lies.
 std::vector<Vec3> firstVertexOfEachComponent(const SolidQuery &solids);
+
+/// Up to `perComponent` vertices of each non-empty component of the query's mesh, spread over its
+/// triangles (the first corner of every k-th one), in components() order, each list starting with
+/// firstVertexOfEachComponent's vertex: probes of which one usually lies in a free grid cell.
+std::vector<std::vector<Vec3>> verticesSpreadOverEachComponent(const SolidQuery &solids, std::size_t perComponent);
 }  // namespace hcd

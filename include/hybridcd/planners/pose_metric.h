@@ -70,7 +70,7 @@ public:
     double largestRotationPart() const { return rotationWeight_ * (planar_ ? kPi : kSqrt2); }
     /// lowerBound(p, point, point) for each of `count` points (without its early return, which
     /// only changes values above `enough`), into bounds[0, count). p's rotation must be
-    /// boundable. Branch-free, so that a leaf's poses are bounded side by side.
+    /// boundable. Branch-free.
     void pointLowerBounds(const PoseCoordinates &p, const std::array<double, 7> *points, std::size_t count,
                           double *bounds) const
     {
@@ -113,9 +113,7 @@ public:
     {
         const auto &v = p.values;
         const double dx = v[0] - point[0], dy = v[1] - point[1], dz = planar_ ? 0.0 : v[2] - point[2];
-        const double squared = dx * dx + dy * dy + dz * dz;
-        return enough > 1e-150 && enough < 1e150 &&
-               translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack);
+        return squaredTranslationBeyond(dx * dx + dy * dy + dz * dz, enough);
     }
 
     /// Whether a gap of `gap` along one coordinate puts every pose beyond `enough` on its own: true
@@ -146,11 +144,7 @@ private:
             const double g = intervalGap(v[i], low[i], high[i]);
             squared += g * g;
         }
-        // Far enough by the translation alone, compared in squares (no root): a value just above
-        // `enough` is then still below the distance. Only where the squares neither underflow nor
-        // overflow, and `enough` is positive (a bound of `enough` itself would not rule out).
-        if (enough > 1e-150 && enough < 1e150 &&
-            translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack))
+        if (squaredTranslationBeyond(squared, enough))
             return enough * (1.0 + 0.1 * kSquaredComparisonSlack);
         const double translation = translationWeight_ * std::sqrt(squared);
         if (!p.rotationBoundable || translation >= enough)
@@ -203,6 +197,16 @@ private:
     static constexpr double kWeightedSumSlack = 1e-12;
     // Rounding of a squared translation against a squared bar.
     static constexpr double kSquaredComparisonSlack = 1e-9;
+
+    // Far enough by the translation alone, its squared length `squared` compared in squares (no
+    // root): a value just above `enough` is then still below the distance. Only where the squares
+    // neither underflow nor overflow, and `enough` is positive (a bound of `enough` itself would not
+    // rule out).
+    bool squaredTranslationBeyond(double squared, double enough) const
+    {
+        return enough > 1e-150 && enough < 1e150 &&
+               translationWeight_ * translationWeight_ * squared > enough * enough * (1.0 + kSquaredComparisonSlack);
+    }
 
     // Distance from v to the interval [low, high] (0 inside).
     static double intervalGap(double v, double low, double high)

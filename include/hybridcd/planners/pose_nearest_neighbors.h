@@ -329,18 +329,15 @@ private:
             }
             // The first child's poses lie at or below the split value, the second's at or above it
             // (build and insert keep them so): a child whose side of the split is beyond the bar by
-            // the query's gap to the split alone is left out without reading its box.
+            // the query's gap to the split alone is left out without reading its box (at most one
+            // is: the query lies on one side).
             const double toSplit = query.values[std::size_t(node.splitDimension)] - node.splitValue;
             const bool firstOut = metric_.coordinateGapBeyond(node.splitDimension, toSplit, bar());
-            const bool secondOut = metric_.coordinateGapBeyond(node.splitDimension, -toSplit, bar());
-            if (firstOut || secondOut)
+            if (firstOut || metric_.coordinateGapBeyond(node.splitDimension, -toSplit, bar()))
             {
-                if (!(firstOut && secondOut))
-                {
-                    Bounded only = boundOf(firstOut ? node.firstChild + 1 : node.firstChild);
-                    if (!beyondBar(only))
-                        stack.push_back(only);
-                }
+                Bounded only = boundOf(firstOut ? node.firstChild + 1 : node.firstChild);
+                if (!beyondBar(only))
+                    stack.push_back(only);
                 continue;
             }
             Bounded first = boundOf(node.firstChild);

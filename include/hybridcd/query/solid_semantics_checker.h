@@ -88,15 +88,15 @@ private:
     std::vector<ContactPair> doContacts(const RigidTransform &worldFromRobot, std::size_t limit,
                                         QueryContext &context) const override;
 
-    std::unique_ptr<CollisionChecker> surface_;
-    SolidQuery environmentSolids_;
-    SolidQuery robotSolids_;
     /// Whether robot component `component` lies inside an environment solid (surfaces apart).
     bool robotComponentInside(const RigidTransform &worldFromRobot, std::size_t component) const;
 
-    std::vector<Vec3> robotRepresentatives_;      ///< one vertex per robot component (robot frame)
-    std::vector<std::vector<Vec3>> robotProbes_;  ///< up to eight vertices of each robot component (robot frame)
-    const ClearanceGrid *environmentGrid_ = nullptr;
+    std::unique_ptr<CollisionChecker> surface_;
+    SolidQuery environmentSolids_;
+    SolidQuery robotSolids_;
+    std::vector<Vec3> robotRepresentatives_;        ///< one vertex per robot component (robot frame)
     std::vector<Vec3> environmentRepresentatives_;  ///< one vertex per environment component (world)
+    std::vector<std::vector<Vec3>> robotProbes_;    ///< up to eight vertices of each robot component (robot frame)
+    const ClearanceGrid *environmentGrid_ = nullptr;
 };
 }  // namespace hcd
