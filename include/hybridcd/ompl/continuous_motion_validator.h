@@ -26,7 +26,7 @@
 // bracket closes on the first contact or near contact; a pass of collision checks at OMPL's
 // resolution first finds the earliest colliding sample. The verdict alone (checkMotion without a
 // last valid state) skips that pass: it checks collisions at states raked over the whole motion
-// (the end, then 1/2, 1/4, 3/4, 1/8, 5/8, ... down to about every eighth of OMPL's samples),
+// (1/2, 1/4, 3/4, 1/8, 5/8, ... down to about every eighth of OMPL's samples, then the end),
 // stopping at the first collision, and only then certifies the intervals between them.
 #pragma once
 
