@@ -107,6 +107,10 @@ struct MotionInterval
     int depth = 0;   ///< splits below the starting interval
 };
 
+// Whether an interval spans at most one of the motion's n validity segments: where the verdict and
+// the first-contact search test its middle state before splitting it (see verdict()).
+bool spansAtMostOneSegment(const MotionInterval &iv, unsigned n) { return (iv.b - iv.a) * double(n) <= 1.0; }
+
 // A sweep wider than this many of the first layer's cells (the clearance grid's) is proved by the
 // first layer or split, never sent to the exact query: that query grows every box by the whole
 // sweep and prunes poorly, while halves are often proved by the grid alone (bench/README.md,
@@ -145,7 +149,7 @@ public:
     /// `testMiddle` false: a middle state is not checked for collision (`colliding` stays false)
     /// unless a front tests it with the interval.
     Outcome check(const MotionInterval &iv, const RigidTransform &middle, double translationSlack, double radialSlack,
-                  bool testMiddle = true)
+                  bool testMiddle)
     {
         Outcome out;
         if (iv.front >= 0)
@@ -174,7 +178,8 @@ public:
             return out;
         }
         out.colliding = testMiddle && validity_.poseCollides(middle, context_);
-        // A colliding middle ends the verdict and narrows the bracket: no front for it.
+        // A colliding middle ends the verdict and narrows the bracket: no front for it. (An untested
+        // middle may collide and get a front: its halves then test the pairs that touch there.)
         if (useFronts_ && !out.colliding && iv.depth >= kFrontDepth && keptPairs_ + kFrontLimit <= kMaxFrontPairs &&
             validity_.poseListSweptNearPairs(middle, translationSlack, radialSlack, kFrontLimit, near_, context_))
         {
@@ -367,8 +372,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     // Without a known contact, a pass of collision checks at OMPL's resolution from s1 onwards: the
     // first contact then only needs to be searched for before the first colliding sample. With one
     // (the verdict's raked contact), the pass is skipped: certification goes through the prefix in
-    // order anyway, checks the middle of every interval it cannot certify, and closes on the first
-    // contact it meets, so the pass mostly repeated those checks (lastValid 10% cheaper on Maze,
+    // order anyway, checks the middle of every interval of a segment or less it cannot certify, and
+    // closes on the first contact it meets, so the pass mostly repeated those checks (lastValid 10% cheaper on Maze,
     // level elsewhere within the noise; bench/README.md section 3).
     const unsigned n = std::max(1u, space->validSegmentCount(s1, s2));
     double end = 1.0;        // the search for the first contact stops here
@@ -432,7 +437,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     // intervals need small clearances, which the proximity query settles quickly. The earliest
     // interval is processed first, so that [0, certified] is a proven-free prefix. As in the
     // verdict, an uncertified interval's middle state is tested for an earlier contact only once
-    // the interval is at most one of OMPL's segments long (certification 4-6% fewer instructions
+    // the interval is at most one of OMPL's segments long (certification 2-12% fewer instructions
     // on section 3's motions; bench/README.md).
     std::vector<MotionInterval> pending;
     const unsigned segments = std::max(1u, unsigned(std::ceil(target * n / kCertifyStartSegments - 1e-9)));
@@ -463,7 +468,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         }
         const IntervalChecks::Outcome outcome =
             checks.check(iv, pose, translationRate * half, angleRate * half + rates.endTurn,
-                         /*testMiddle=*/(iv.b - iv.a) * double(n) <= 1.0);
+                         /*testMiddle=*/spansAtMostOneSegment(iv, n));
         if (outcome.certified)
         {
             certified = iv.b;  // intervals are taken in order: the free prefix grows
@@ -603,7 +608,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
             return report;  // refused
         const IntervalChecks::Outcome outcome =
             checks.check(iv, poseAt(mid), translationRate * half, angleRate * half + rates.endTurn,
-                         /*testMiddle=*/(iv.b - iv.a) * double(n) <= 1.0);
+                         /*testMiddle=*/spansAtMostOneSegment(iv, n));
         if (outcome.certified)
             continue;
         if (outcome.colliding)

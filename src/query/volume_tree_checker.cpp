@@ -69,22 +69,26 @@ void forEachLaneBlock(const VolumeTree<Volume> &tree, Visit &&visit)
 class NearestOnTop
 {
 public:
-    void add(const NodePair &pair, double squaredCentreDistance, double radii)
+    /// Both children of a robot node against one block of environment lanes at most.
+    static constexpr int kCapacity = 2 * ObbLanes::kLanes;
+
+    /// `radiusSum`: the two bounding spheres' radii added. At most kCapacity pairs.
+    void add(const NodePair &pair, double squaredCentreDistance, double radiusSum)
     {
         // Kept from the farthest (index 0) to the nearest; "nearer" compares d1^2 / r1^2 with
         // d2^2 / r2^2 multiplied out, so that a radius of 0 divides nothing.
-        const double squaredRadii = radii * radii;
+        const double squaredRadiusSum = radiusSum * radiusSum;
         int j = count_++;
-        while (j > 0 && squared_[j - 1] * squaredRadii < squaredCentreDistance * squaredRadii_[j - 1])
+        while (j > 0 && squared_[j - 1] * squaredRadiusSum < squaredCentreDistance * squaredRadiusSum_[j - 1])
         {
             pairs_[j] = pairs_[j - 1];
             squared_[j] = squared_[j - 1];
-            squaredRadii_[j] = squaredRadii_[j - 1];
+            squaredRadiusSum_[j] = squaredRadiusSum_[j - 1];
             --j;
         }
         pairs_[j] = pair;
         squared_[j] = squaredCentreDistance;
-        squaredRadii_[j] = squaredRadii;
+        squaredRadiusSum_[j] = squaredRadiusSum;
     }
     void pushOnto(TraversalStack &stack) const
     {
@@ -93,9 +97,9 @@ public:
     }
 
 private:
-    NodePair pairs_[8];
-    double squared_[8];
-    double squaredRadii_[8];
+    NodePair pairs_[kCapacity];
+    double squared_[kCapacity];
+    double squaredRadiusSum_[kCapacity];
     int count_ = 0;
 };
 }  // namespace
@@ -487,8 +491,9 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
         if constexpr (LanesOf<Volume>::kUsed)
         {
             // The boxes two levels below the node split are tested at once, by the same sphere and
-            // separating-axis tests; the pairs that may overlap are pushed as tested, in the order
-            // childPairs would visit them.
+            // separating-axis tests; the pairs that may overlap are pushed as tested: nearest
+            // centres on top for a yes-or-no query (NearestOnTop), else in the order childPairs
+            // would visit them.
             const LaneSplit split = laneSplit(pair);
             if (split.kind == LaneSplit::Kind::Environment)
             {
@@ -505,10 +510,10 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                                                                   tolerance + slack.at(robotNodeReach_[r]));
                         boxTests += std::uint64_t(lanes.count);
                         const Vec3 centre = VolumeTraits<Volume>::center(robotVolume);
+                        const int c = lanes.kCenter;
                         for (int k = 0; k < lanes.count; ++k)
                             if ((overlapping >> k) & 1u)
                             {
-                                const int c = lanes.kCenter;
                                 const Vec3 laneCentre(lanes.field[c][k], lanes.field[c + 1][k], lanes.field[c + 2][k]);
                                 order.add({r, lanes.node[k] | kTestedByLanes}, (laneCentre - centre).squaredNorm(),
                                           lanes.radius[k] + rNodes[r].radius);

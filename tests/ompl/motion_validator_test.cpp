@@ -117,33 +117,32 @@ TEST(MotionValidator, DiscreteTunnelsThroughAThinWallContinuousDoesNot)
 
 TEST(MotionValidator, ContactsBetweenRakedStatesOfAnyWidthAreFound)
 {
-    // A unit cube crossing slabs whose colliding stretch of the motion is a sliver, half a
-    // segment, or several of OMPL's segments, centred at offsets swept over a stretch wider than
-    // the verdict's raked spacing (about eight segments), so that many lie wholly between raked
-    // states, where only certification (and the middle states it tests) can find them.
-    const double start = -20.0, end = 20.0;
-    for (const double widthInSegments : {0.01, 0.5, 2.0, 5.0})
+    // A plate 0.01 thick along the motion crossing slabs, so that the colliding stretch of the
+    // motion is a sliver (0.02 world units, about a hundredth of a segment), about half a segment,
+    // or several of OMPL's segments, centred at offsets swept over a stretch wider than the
+    // verdict's raked spacing (4 to 8 segments), so that many lie wholly between raked states,
+    // where only certification and the middle states it tests can find them.
+    const double start = -20.0, end = 20.0, thickness = 0.01;
+    const TriangleMesh plate = test::boxMesh(Vec3(-0.5 * thickness, -0.5, -0.5), Vec3(0.5 * thickness, 0.5, 0.5));
+    double segment = 0.0;  // world units along x per validity segment of this motion
     {
-        double segment = 0.0;
-        {
-            const LoadedProblem probe = makeProblem(test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)),
-                                                    test::boxMesh(Vec3(40, 40, 40), Vec3(41, 41, 41)));
-            PlanningProblem probePlanning = makePlanningProblem(probe, makeChecker("obb", probe.scene));
-            probePlanning.setup->setup();
-            ob::ScopedState<> a(probePlanning.setup->getSpaceInformation()),
-                b(probePlanning.setup->getSpaceInformation());
-            setPose(a.get(), Vec3(start, 0, 0), 0.0);
-            setPose(b.get(), Vec3(end, 0, 0), 0.0);
-            segment = (end - start) / probePlanning.setup->getStateSpace()->validSegmentCount(a.get(), b.get());
-        }
-        const double width = widthInSegments * segment;
+        const LoadedProblem probe = makeProblem(plate, test::boxMesh(Vec3(40, 40, 40), Vec3(41, 41, 41)));
+        PlanningProblem probePlanning = makePlanningProblem(probe, makeChecker("obb", probe.scene));
+        probePlanning.setup->setup();
+        ob::ScopedState<> a(probePlanning.setup->getSpaceInformation()), b(probePlanning.setup->getSpaceInformation());
+        setPose(a.get(), Vec3(start, 0, 0), 0.0);
+        setPose(b.get(), Vec3(end, 0, 0), 0.0);
+        segment = (end - start) / probePlanning.setup->getStateSpace()->validSegmentCount(a.get(), b.get());
+    }
+    for (const double stretchInSegments : {0.012, 0.5, 2.0, 5.0})
+    {
+        const double width = std::max(thickness, stretchInSegments * segment - thickness);  // the slab's
         for (int k = 0; k < 23; ++k)
         {
             // The slab's centre, from 6 segments before the middle of the motion to 6 after it.
             const double centre = (-6.0 + 12.0 * k / 22.0) * segment;
-            const LoadedProblem problem =
-                makeProblem(test::boxMesh(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)),
-                            test::boxMesh(Vec3(centre - 0.5 * width, -10, -10), Vec3(centre + 0.5 * width, 10, 10)));
+            const LoadedProblem problem = makeProblem(
+                plate, test::boxMesh(Vec3(centre - 0.5 * width, -10, -10), Vec3(centre + 0.5 * width, 10, 10)));
             PlanningProblem planning = makePlanningProblem(problem, makeChecker("auto", problem.scene));
             planning.setup->setup();
             const auto si = planning.setup->getSpaceInformation();
@@ -151,17 +150,29 @@ TEST(MotionValidator, ContactsBetweenRakedStatesOfAnyWidthAreFound)
             setPose(a.get(), Vec3(start, 0, 0), 0.0);
             setPose(b.get(), Vec3(end, 0, 0), 0.0);
             auto &validator = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
-            EXPECT_FALSE(validator.checkMotion(a.get(), b.get())) << widthInSegments << " segments at " << centre;
-            // The cube's front face (x + 0.5) reaches the slab's near face.
-            const double contact = (centre - 0.5 * width - 0.5 - start) / (end - start);
-            std::pair<ob::State *, double> last{si->allocState(), 0.0};
-            EXPECT_FALSE(validator.checkMotion(a.get(), b.get(), last));
-            EXPECT_LE(last.second, contact) << widthInSegments << " segments at " << centre;
-            // Bracketed as the planning set-up asks: to 1e-3 of the motion or one segment.
-            EXPECT_GE(last.second, contact - std::max(1e-3, segment / (end - start)))
-                << widthInSegments << " segments at " << centre;
-            EXPECT_TRUE(si->isValid(last.first));
-            si->freeState(last.first);
+            // With near-pair fronts, the pairs listed on an uncertified interval find the contact;
+            // without them, only the middle states tested do.
+            for (const bool fronts : {true, false})
+            {
+                validator.setNearPairFronts(fronts);
+                const std::string label = std::to_string(stretchInSegments) + " segments at " + std::to_string(centre) +
+                                          (fronts ? ", fronts" : ", no fronts");
+                EXPECT_FALSE(validator.checkMotion(a.get(), b.get())) << label;
+                // The plate's front face reaches the slab's near face; the slab is crossed, so a real
+                // contact is found (not a near contact or a refusal), at or after that fraction.
+                const double contact = (centre - 0.5 * width - 0.5 * thickness - start) / (end - start);
+                const ContinuousMotionValidator::Report report = validator.checkMotionDetailed(a.get(), b.get());
+                EXPECT_FALSE(report.free) << label;
+                EXPECT_TRUE(report.contactFound) << label;
+                EXPECT_GE(report.contactAt, contact - 1e-9) << label;
+                std::pair<ob::State *, double> last{si->allocState(), 0.0};
+                EXPECT_FALSE(validator.checkMotion(a.get(), b.get(), last));
+                EXPECT_LE(last.second, contact) << label;
+                // Bracketed as the planning set-up asks: to 1e-3 of the motion or one segment.
+                EXPECT_GE(last.second, contact - std::max(1e-3, segment / (end - start))) << label;
+                EXPECT_TRUE(si->isValid(last.first)) << label;
+                si->freeState(last.first);
+            }
         }
     }
 }

@@ -15,7 +15,9 @@
 // its reach (CollisionChecker::listSweptNearPairs, at most 64); its parts then test only those pairs,
 // every other pair being proved apart over the whole interval. When a last valid state is asked
 // for, the search then narrows to the bracket [last certified, contact] until it is shorter than
-// the contact tolerance. A motion is rejected when a middle state collides (contact found) or when
+// the contact tolerance. A middle state is tested for collision once its interval spans at most one
+// of OMPL's segments (longer intervals split without it: nearly all of them belong to free motions).
+// A motion is rejected when a middle state collides (contact found) or when
 // an interval shrinks below a clearance too small to certify (1e-7 of the scene size, a near
 // contact): a motion is never accepted on rounding alone. The angle is the one OMPL's interpolation
 // turns (interpolationTurn: yaw as SO2 takes it, slerp's angle by atan2, exact for tiny turns);
@@ -23,9 +25,10 @@
 // angle, so that end turn widens every interval's slack and s2 is checked as it is. States that no
 // bound holds for (non-finite values, quaternions off unit length) are refused. When the first
 // contact is asked for, the
-// bracket closes on the first contact or near contact; a pass of collision checks at OMPL's
-// resolution first finds the earliest colliding sample. The verdict alone (checkMotion without a
-// last valid state) skips that pass: it checks collisions at states raked over the whole motion
+// bracket closes on the first contact or near contact; the verdict runs first, and its contact
+// confines the search to the motion before it (without one, a pass of collision checks at OMPL's
+// resolution first finds the earliest colliding sample). The verdict alone (checkMotion without a
+// last valid state) checks collisions at states raked over the whole motion
 // (1/2, 1/4, 3/4, 1/8, 5/8, ... down to about every eighth of OMPL's samples, then the end),
 // stopping at the first collision, and only then certifies the intervals between them.
 #pragma once
