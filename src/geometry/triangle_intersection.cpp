@@ -276,7 +276,17 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
     if (sa0 != 0 && sa1 != 0 && sa2 != 0 && sb0 != 0 && sb1 != 0 && sb2 != 0)
         return straddlingTrianglesIntersect(a, sa, b, sb);
 
-    // General position: an edge of one triangle meets the other triangle.
+    // General position: an edge of one triangle meets the other triangle. Where one triangle has
+    // no two vertices strictly on opposite sides of the other's plane, it meets that plane only in
+    // its vertices on it (one, or the edge between two), so its own edges' test decides alone: the
+    // common case of prisms on one floor, whose side faces stand on the others' bottom faces.
+    const auto straddles = [](const int s[3]) {
+        return (s[0] > 0 || s[1] > 0 || s[2] > 0) && (s[0] < 0 || s[1] < 0 || s[2] < 0);
+    };
+    if (!straddles(sa))
+        return edgesMeetTriangle(a, sa, b0, b1, b2);
+    if (!straddles(sb))
+        return edgesMeetTriangle(b, sb, a0, a1, a2);
     return edgesMeetTriangle(a, sa, b0, b1, b2) || edgesMeetTriangle(b, sb, a0, a1, a2);
 }
 }  // namespace hcd

@@ -598,6 +598,54 @@ std::vector<Construction> constructions()
                      }
                  },
                  true});
+    // One triangle meets the other's plane only in an edge (its third vertex off the plane) or a
+    // vertex (the other two on one side), as side faces of prisms standing on one floor meet the
+    // others' bottom faces: the edge crosses the face's edge x = 0 at height y, or lies beyond its
+    // edge x + y = 1; the vertex lies beyond that edge.
+    c.push_back({"edge on the plane, across the face",
+                 [](TestRandom &rng) {
+                     const PlaneFrame f = randomFrame(rng);
+                     const Triangle a = randomRelabel(frameTriangle(f), rng);
+                     const double y = eighth(rng, 1, 7);
+                     const Vec3 p = f.at(-eighth(rng, 1, 16), y), q = f.at(eighth(rng, 1, 16), y);
+                     const Triangle b{{p, q, gridPointOnSide(a, integerIn(rng, 0, 1) ? 1 : -1, rng)}};
+                     return std::make_pair(a, randomRelabel(b, rng));
+                 },
+                 true});
+    c.push_back({"edge on the plane, beside the face",
+                 [](TestRandom &rng) {
+                     const PlaneFrame f = randomFrame(rng);
+                     const Triangle a = randomRelabel(frameTriangle(f), rng);
+                     const auto beyond = [&] {
+                         const double x = eighth(rng, -16, 16);
+                         return f.at(x, 1.0 - x + eighth(rng, 1, 8));
+                     };
+                     for (;;)
+                     {
+                         const Vec3 p = beyond(), q = beyond();
+                         if (p != q)
+                         {
+                             const Triangle b{{p, q, gridPointOnSide(a, integerIn(rng, 0, 1) ? 1 : -1, rng)}};
+                             return std::make_pair(a, randomRelabel(b, rng));
+                         }
+                     }
+                 },
+                 false});
+    c.push_back({"vertex on the plane, beside the face",
+                 [](TestRandom &rng) {
+                     const PlaneFrame f = randomFrame(rng);
+                     const Triangle a = randomRelabel(frameTriangle(f), rng);
+                     const double x = eighth(rng, -16, 16);
+                     const Vec3 p = f.at(x, 1.0 - x + eighth(rng, 1, 8));
+                     const int side = integerIn(rng, 0, 1) ? 1 : -1;
+                     for (;;)
+                     {
+                         const Triangle b{{p, gridPointOnSide(a, side, rng), gridPointOnSide(a, side, rng)}};
+                         if (!gridDegenerate(b))
+                             return std::make_pair(a, randomRelabel(b, rng));
+                     }
+                 },
+                 false});
     return c;
 }
 
