@@ -498,17 +498,24 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
             if (split.kind == LaneSplit::Kind::Environment)
             {
                 const auto &lanes = *split.environmentLanes;
+                // One robot node, or each of its two children, against every lane at once.
+                const int robotCount = split.eachRobotChild ? 2 : 1;
+                const auto robotOf = [&](int i) {
+                    return split.eachRobotChild ? std::uint32_t(rn.firstChild + i) : pair.robot;
+                };
+                const auto lanesOverlapping = [&](std::uint32_t r, const Volume &robotVolume) {
+                    boxTests += std::uint64_t(lanes.count);
+                    return lanesOverlap(lanes, robotVolume, rNodes[r].radius, tolerance + slack.at(robotNodeReach_[r]));
+                };
                 if (!near && !found)
                 {
                     // A yes-or-no query: the pairs that may overlap, nearest centres on top.
                     NearestOnTop order;
-                    for (int i = 0; i < (split.eachRobotChild ? 2 : 1); ++i)
+                    for (int i = 0; i < robotCount; ++i)
                     {
-                        const std::uint32_t r = split.eachRobotChild ? std::uint32_t(rn.firstChild + i) : pair.robot;
+                        const std::uint32_t r = robotOf(i);
                         const Volume &robotVolume = placed.volume(r);
-                        const unsigned overlapping = lanesOverlap(lanes, robotVolume, rNodes[r].radius,
-                                                                  tolerance + slack.at(robotNodeReach_[r]));
-                        boxTests += std::uint64_t(lanes.count);
+                        const unsigned overlapping = lanesOverlapping(r, robotVolume);
                         const Vec3 centre = VolumeTraits<Volume>::center(robotVolume);
                         const int c = lanes.kCenter;
                         for (int k = 0; k < lanes.count; ++k)
@@ -524,12 +531,10 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 }
                 // Contacts and near pairs are listed in the trees' order: robot children last
                 // first, so that the first comes off the stack first.
-                for (int i = split.eachRobotChild ? 1 : 0; i >= 0; --i)
+                for (int i = robotCount - 1; i >= 0; --i)
                 {
-                    const std::uint32_t r = split.eachRobotChild ? std::uint32_t(rn.firstChild + i) : pair.robot;
-                    const unsigned overlapping = lanesOverlap(lanes, placed.volume(r), rNodes[r].radius,
-                                                              tolerance + slack.at(robotNodeReach_[r]));
-                    boxTests += std::uint64_t(lanes.count);
+                    const std::uint32_t r = robotOf(i);
+                    const unsigned overlapping = lanesOverlapping(r, placed.volume(r));
                     for (int k = lanes.count - 1; k >= 0; --k)
                         if ((overlapping >> k) & 1u)
                             stack.push({r, lanes.node[k] | kTestedByLanes});
