@@ -258,9 +258,12 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
                segmentIntersectsTriangle(b2, b0, a0, a1, a2);
     }
 
-    if (allSbZero)
+    // Every sign against one triangle's plane zero: the triangles are coplanar (for finite input the
+    // other's signs are then all zero too), or that triangle has a vertex that is not finite, which
+    // leaves it no plane to measure against.
+    if (allSbZero || allSaZero)
     {
-        // Non-finite input makes every sign zero and lands here or above: report it as touching.
+        // Non-finite input lands here or above: report it as touching.
         if (anyNonFinite({&a0, &a1, &a2, &b0, &b1, &b2}))
             return true;
         // Coplanar: they meet iff no edge line of either separates them. Neither is degenerate
@@ -276,10 +279,11 @@ bool trianglesIntersect(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Ve
     if (sa0 != 0 && sa1 != 0 && sa2 != 0 && sb0 != 0 && sb1 != 0 && sb2 != 0)
         return straddlingTrianglesIntersect(a, sa, b, sb);
 
-    // General position: an edge of one triangle meets the other triangle. Where one triangle has
-    // no two vertices strictly on opposite sides of the other's plane, it meets that plane only in
-    // its vertices on it (one, or the edge between two), so its own edges' test decides alone: the
-    // common case of prisms on one floor, whose side faces stand on the others' bottom faces.
+    // Left: some vertex on the other's plane. They meet iff an edge of one triangle meets the other.
+    // Where one triangle has no two vertices strictly on opposite sides of the other's plane (nor
+    // all on it, above), it meets that plane only in its vertices on it (one, or the edge between
+    // two), so its own edges' test decides alone: the common case of prisms on one floor, whose
+    // side faces stand on the others' bottom faces.
     const auto straddles = [](const int s[3]) {
         return (s[0] > 0 || s[1] > 0 || s[2] > 0) && (s[0] < 0 || s[1] < 0 || s[2] < 0);
     };

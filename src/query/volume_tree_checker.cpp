@@ -503,7 +503,8 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 const auto robotOf = [&](int i) {
                     return split.eachRobotChild ? std::uint32_t(rn.firstChild + i) : pair.robot;
                 };
-                const auto lanesOverlapping = [&](std::uint32_t r, const Volume &robotVolume) {
+                // The mask of lanes robot node r may overlap; each lane counts as a box test.
+                const auto overlappingLanes = [&](std::uint32_t r, const Volume &robotVolume) {
                     boxTests += std::uint64_t(lanes.count);
                     return lanesOverlap(lanes, robotVolume, rNodes[r].radius, tolerance + slack.at(robotNodeReach_[r]));
                 };
@@ -515,7 +516,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                     {
                         const std::uint32_t r = robotOf(i);
                         const Volume &robotVolume = placed.volume(r);
-                        const unsigned overlapping = lanesOverlapping(r, robotVolume);
+                        const unsigned overlapping = overlappingLanes(r, robotVolume);
                         const Vec3 centre = VolumeTraits<Volume>::center(robotVolume);
                         const int c = lanes.kCenter;
                         for (int k = 0; k < lanes.count; ++k)
@@ -534,7 +535,7 @@ bool VolumeTreeChecker<Volume>::anyPairWithin(const RigidTransform &worldFromRob
                 for (int i = robotCount - 1; i >= 0; --i)
                 {
                     const std::uint32_t r = robotOf(i);
-                    const unsigned overlapping = lanesOverlapping(r, placed.volume(r));
+                    const unsigned overlapping = overlappingLanes(r, placed.volume(r));
                     for (int k = lanes.count - 1; k >= 0; --k)
                         if ((overlapping >> k) & 1u)
                             stack.push({r, lanes.node[k] | kTestedByLanes});

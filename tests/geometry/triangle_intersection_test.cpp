@@ -935,4 +935,16 @@ TEST(TriangleIntersection, NonFiniteInputIsReportedAsContact)
         EXPECT_TRUE(hcd::segmentsIntersect(bad, f0, x, y));
         EXPECT_TRUE(hcd::segmentsIntersect(f0, f1, x, bad));
     }
+    // A triangle with one non-finite vertex whose finite corners still span a proper triangle in a
+    // projection: every sign against its (undefined) plane is zero, but not every sign of its own
+    // corners against the finite triangle's plane. Touching in either order, wherever the finite
+    // triangle lies.
+    const Vec3 a0(5, -10, -10), a1(5, 30, -10), a2(5, -10, 30);
+    for (const Vec3 &bad : {Vec3(nan, 0, 0), Vec3(inf, 0, 0), Vec3(-inf, 0, 0)})
+    {
+        EXPECT_TRUE(hcd::trianglesIntersect(a0, a1, a2, bad, Vec3(0, 1, 0), Vec3(0, 0, 1)));
+        EXPECT_TRUE(hcd::trianglesIntersect(bad, Vec3(0, 1, 0), Vec3(0, 0, 1), a0, a1, a2));
+        EXPECT_TRUE(hcd::trianglesIntersect(Vec3(5, 10, 10), Vec3(5, 11, 10), Vec3(5, 10, 11), bad, Vec3(0, 1, 0),
+                                            Vec3(0, 0, 1)));
+    }
 }
