@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace hcd
@@ -65,16 +66,55 @@ std::uint64_t reverseBits(std::uint64_t i, unsigned bits)
 // Measured with bench/motion_comparison.cpp (bench/README.md, section 3).
 constexpr unsigned kRakeStride = 8;
 
-// A state of the space, freed when it goes out of scope.
-struct ScratchState
+// The states of one motion as the robot's poses: OMPL's interpolation from s1 to s2, into a
+// scratch state of the space that is freed with this.
+class MotionPoses
 {
-    explicit ScratchState(ompl::base::SpaceInformation &space) : si(&space), state(space.allocState()) {}
-    ScratchState(const ScratchState &) = delete;
-    ScratchState &operator=(const ScratchState &) = delete;
-    ~ScratchState() { si->freeState(state); }
-    ompl::base::SpaceInformation *si;
-    ompl::base::State *state;
+public:
+    MotionPoses(ompl::base::SpaceInformation &si, const ompl::base::State *s1, const ompl::base::State *s2, bool planar)
+        : si_(&si),
+          s1_(s1),
+          s2_(s2),
+          planar_(planar),
+          state_(si.allocState())
+    {
+    }
+    MotionPoses(const MotionPoses &) = delete;
+    MotionPoses &operator=(const MotionPoses &) = delete;
+    ~MotionPoses() { si_->freeState(state_); }
+
+    /// The pose at fraction tau of the motion.
+    RigidTransform at(double tau) const
+    {
+        si_->getStateSpace()->interpolate(s1_, s2_, tau, state_);
+        return poseOfState(state_, planar_);
+    }
+    /// The scratch state, for other interpolations of the same motion.
+    ompl::base::State *scratch() const { return state_; }
+
+private:
+    ompl::base::SpaceInformation *si_;
+    const ompl::base::State *s1_;
+    const ompl::base::State *s2_;
+    bool planar_;
+    ompl::base::State *state_;
 };
+
+// The rates of a motion the validator checks, or nullopt for one it refuses without a contact: s2
+// beyond the space's bounds (where bounds apply), or rates that cannot be bounded. p1 and p2 are
+// the poses of s1 and s2.
+std::optional<MotionRates> admissibleRates(const ompl::base::SpaceInformation &si, bool applyBounds,
+                                           const ompl::base::State *s1, const ompl::base::State *s2,
+                                           const RigidTransform &p1, const RigidTransform &p2, bool planar,
+                                           ompl::base::State *scratch)
+{
+    if (applyBounds && !si.satisfiesBounds(s2))
+        return std::nullopt;
+    const MotionRates rates = motionRates(si.getStateSpace(), s1, s2, p1, p2, planar, scratch);
+    if (!rates.bounded)
+        return std::nullopt;
+    return rates;
+}
 // The search for a first contact starts from intervals of this many of OMPL's segments: wide enough
 // for the grid to prove many at once (a sweep of several cells goes to it alone), and split where
 // it cannot. Measured with bench/motion_comparison.cpp against single segments (bench/README.md,
@@ -310,12 +350,9 @@ ContinuousMotionValidator::bracketTranslation(const ompl::base::State *s1, const
     Report report;
     report.lastFree = std::max(0.0, first.time - 0.5 * tolerance);
     const double blockedAt = std::min(1.0, first.time + 0.5 * tolerance);
-    const ScratchState holder(*si_);
+    const MotionPoses poses(*si_, s1, s2, planar);
     const QueryContextPool::Lease context = validity_->contexts().borrow();
-    const auto collidesAt = [&](double tau) {
-        space->interpolate(s1, s2, tau, holder.state);
-        return validity_->poseCollides(poseOfState(holder.state, planar), *context);
-    };
+    const auto collidesAt = [&](double tau) { return validity_->poseCollides(poses.at(tau), *context); };
     if (collidesAt(report.lastFree) || !collidesAt(blockedAt))
         return std::nullopt;
     report.contactFound = report.blocked = true;
@@ -350,23 +387,16 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     const bool planar = validity_->planar();
     // One context for every query of this motion (coherence between neighbouring states).
     const QueryContextPool::Lease context = validity_->contexts().borrow();
-    const ScratchState holder(*si);
-    ompl::base::State *state = holder.state;
-    const auto poseAt = [&](double tau) {
-        space->interpolate(s1, s2, tau, state);
-        return poseOfState(state, planar);
-    };
+    const MotionPoses poses(*si, s1, s2, planar);
     Report report;
     // s1 anchors the certified prefix (surfaces kept apart from a free state keep the robot free),
     // and the last valid state comes from it. The verdict before this search tested it when asked
     // (a colliding s1 is then the known contact at 0, bracketed below at once), or took it as valid,
     // as checkMotion's contract has it: not tested again.
-    const RigidTransform p1 = poseOfState(s1, planar);
-    if (applyBounds_ && !si->satisfiesBounds(s2))
-        return report;  // refused, no contact
-    const RigidTransform p2 = poseOfState(s2, planar);
-    const MotionRates rates = motionRates(space, s1, s2, p1, p2, planar, state);
-    if (!rates.bounded)
+    const RigidTransform p1 = poseOfState(s1, planar), p2 = poseOfState(s2, planar);
+    const std::optional<MotionRates> rates =
+        admissibleRates(*si, applyBounds_, s1, s2, p1, p2, planar, poses.scratch());
+    if (!rates)
         return report;  // refused, no contact
 
     // Without a known contact, a pass of collision checks at OMPL's resolution from s1 onwards: the
@@ -383,7 +413,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         end = knownContact;  // only samples before it can hold an earlier contact
     for (unsigned k = 1; !contactKnown && k <= n && double(k) / n < end; ++k)
     {
-        if (validity_->poseCollides(poseAt(double(k) / n), *context))
+        if (validity_->poseCollides(poses.at(double(k) / n), *context))
         {
             end = double(k) / n;
             contactKnown = true;
@@ -392,7 +422,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         freeState = double(k) / n;
     }
 
-    const double translationRate = rates.translation, angleRate = rates.angle;
+    const double translationRate = rates->translation, angleRate = rates->angle;
     const double speed = translationRate + robotRadius_ * angleRate;
 
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
@@ -415,7 +445,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
             if (!(freeAt < mid && mid < collidingAt))
                 break;
             ++queries;
-            (validity_->poseCollides(poseAt(mid), *context) ? collidingAt : freeAt) = mid;
+            (validity_->poseCollides(poses.at(mid), *context) ? collidingAt : freeAt) = mid;
         }
         return collidingAt;
     };
@@ -460,14 +490,14 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         const double mid = 0.5 * (iv.a + iv.b);
         const double half = 0.5 * (iv.b - iv.a);
         const double needed = speed * half;  // for the farthest robot point
-        const RigidTransform pose = poseAt(mid);
+        const RigidTransform pose = poses.at(mid);
         if (++queries > (contactAt <= 1.0 ? kMaxRefinementQueries : kMaxQueries))
         {
             refused = true;  // or, with a contact known, the bracket is left wider than the tolerance
             break;
         }
         const IntervalChecks::Outcome outcome =
-            checks.check(iv, pose, translationRate * half, angleRate * half + rates.endTurn,
+            checks.check(iv, pose, translationRate * half, angleRate * half + rates->endTurn,
                          /*testMiddle=*/spansAtMostOneSegment(iv, n));
         if (outcome.certified)
         {
@@ -535,12 +565,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     const bool planar = validity_->planar();
     // One context for every query of this motion (coherence between neighbouring states).
     const QueryContextPool::Lease context = validity_->contexts().borrow();
-    const ScratchState holder(*si);
-    ompl::base::State *state = holder.state;
-    const auto poseAt = [&](double tau) {
-        space->interpolate(s1, s2, tau, state);
-        return poseOfState(state, planar);
-    };
+    const MotionPoses poses(*si, s1, s2, planar);
     Report report;
     const auto contact = [&](double at) {
         report.contactFound = true;
@@ -552,11 +577,10 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     const RigidTransform p1 = poseOfState(s1, planar);
     if (testStart && validity_->poseCollides(p1, *context))
         return contact(0.0);
-    if (applyBounds_ && !si->satisfiesBounds(s2))
-        return report;  // refused, no contact
     const RigidTransform p2 = poseOfState(s2, planar);
-    const MotionRates rates = motionRates(space, s1, s2, p1, p2, planar, state);
-    if (!rates.bounded)
+    const std::optional<MotionRates> rates =
+        admissibleRates(*si, applyBounds_, s1, s2, p1, p2, planar, poses.scratch());
+    if (!rates)
         return report;  // refused, no contact
 
     // Raked collision checks: states on a dyadic grid of m + 1 points (about one per `kRakeStride`
@@ -575,14 +599,14 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     for (std::uint64_t i = 1; i < m; ++i)
     {
         const double tau = double(reverseBits(i, bits)) / double(m);
-        if (validity_->poseCollides(poseAt(tau), *context))
+        if (validity_->poseCollides(poses.at(tau), *context))
             return contact(tau);
     }
     // s2 itself, which OMPL's state at tau = 1 differs from by rates.endTurn.
     if (validity_->poseCollides(p2, *context))
         return contact(1.0);
 
-    const double translationRate = rates.translation, angleRate = rates.angle;
+    const double translationRate = rates->translation, angleRate = rates->angle;
     const double speed = translationRate + robotRadius_ * angleRate;
 
     // Certification of the dyadic intervals between the raked states, by bisection with the
@@ -607,7 +631,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         if (++queries > kMaxQueries)
             return report;  // refused
         const IntervalChecks::Outcome outcome =
-            checks.check(iv, poseAt(mid), translationRate * half, angleRate * half + rates.endTurn,
+            checks.check(iv, poses.at(mid), translationRate * half, angleRate * half + rates->endTurn,
                          /*testMiddle=*/spansAtMostOneSegment(iv, n));
         if (outcome.certified)
             continue;
