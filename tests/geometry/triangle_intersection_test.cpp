@@ -427,6 +427,16 @@ Triangle frameTriangle(const PlaneFrame &f) { return {{f.at(0, 0), f.at(1, 0), f
 // Eighths in [lo, hi] / 8.
 double eighth(TestRandom &rng, int lo, int hi) { return integerIn(rng, lo, hi) / 8.0; }
 
+// A point of the frame's plane strictly beyond the frame triangle's edge x + y = 1 (eighths).
+Vec3 beyondHypotenuse(const PlaneFrame &f, TestRandom &rng)
+{
+    const double x = eighth(rng, -16, 16);
+    return f.at(x, 1.0 - x + eighth(rng, 1, 8));
+}
+
+// 1 or -1: a side of a plane.
+int randomSide(TestRandom &rng) { return integerIn(rng, 0, 1) ? 1 : -1; }
+
 // A random interior point with positive dyadic barycentric weights (eighths).
 Vec3 interiorPoint(const Triangle &t, TestRandom &rng)
 {
@@ -560,7 +570,7 @@ std::vector<Construction> constructions()
                  [](TestRandom &rng) {
                      const Triangle a = randomRelabel(randomGridTriangle(rng, -4, 4), rng);
                      const Vec3 p = 0.25 * a.v[0] + 0.25 * a.v[1] + 0.5 * a.v[2];
-                     const int side = integerIn(rng, 0, 1) ? 1 : -1;
+                     const int side = randomSide(rng);
                      for (;;)
                      {
                          const Triangle b{{p, gridPointOnSide(a, side, rng), gridPointOnSide(a, side, rng)}};
@@ -573,7 +583,7 @@ std::vector<Construction> constructions()
     c.push_back({"vertex just above face",
                  [](TestRandom &rng) {
                      const Triangle a = randomRelabel(randomGridTriangle(rng, -4, 4), rng);
-                     const int side = integerIn(rng, 0, 1) ? 1 : -1;
+                     const int side = randomSide(rng);
                      const Vec3 p =
                          interiorPoint(a, rng) + side * std::ldexp(1.0, -integerIn(rng, 20, 30)) * gridNormal(a);
                      for (;;)
@@ -608,7 +618,7 @@ std::vector<Construction> constructions()
                      const Triangle a = randomRelabel(frameTriangle(f), rng);
                      const double y = eighth(rng, 1, 7);
                      const Vec3 p = f.at(-eighth(rng, 1, 16), y), q = f.at(eighth(rng, 1, 16), y);
-                     const Triangle b{{p, q, gridPointOnSide(a, integerIn(rng, 0, 1) ? 1 : -1, rng)}};
+                     const Triangle b{{p, q, gridPointOnSide(a, randomSide(rng), rng)}};
                      return std::make_pair(a, randomRelabel(b, rng));
                  },
                  true});
@@ -616,16 +626,12 @@ std::vector<Construction> constructions()
                  [](TestRandom &rng) {
                      const PlaneFrame f = randomFrame(rng);
                      const Triangle a = randomRelabel(frameTriangle(f), rng);
-                     const auto beyond = [&] {
-                         const double x = eighth(rng, -16, 16);
-                         return f.at(x, 1.0 - x + eighth(rng, 1, 8));
-                     };
                      for (;;)
                      {
-                         const Vec3 p = beyond(), q = beyond();
+                         const Vec3 p = beyondHypotenuse(f, rng), q = beyondHypotenuse(f, rng);
                          if (p != q)
                          {
-                             const Triangle b{{p, q, gridPointOnSide(a, integerIn(rng, 0, 1) ? 1 : -1, rng)}};
+                             const Triangle b{{p, q, gridPointOnSide(a, randomSide(rng), rng)}};
                              return std::make_pair(a, randomRelabel(b, rng));
                          }
                      }
@@ -635,9 +641,8 @@ std::vector<Construction> constructions()
                  [](TestRandom &rng) {
                      const PlaneFrame f = randomFrame(rng);
                      const Triangle a = randomRelabel(frameTriangle(f), rng);
-                     const double x = eighth(rng, -16, 16);
-                     const Vec3 p = f.at(x, 1.0 - x + eighth(rng, 1, 8));
-                     const int side = integerIn(rng, 0, 1) ? 1 : -1;
+                     const Vec3 p = beyondHypotenuse(f, rng);
+                     const int side = randomSide(rng);
                      for (;;)
                      {
                          const Triangle b{{p, gridPointOnSide(a, side, rng), gridPointOnSide(a, side, rng)}};
