@@ -83,14 +83,14 @@ public:
     MotionPoses &operator=(const MotionPoses &) = delete;
     ~MotionPoses() { si_->freeState(state_); }
 
-    /// The pose at fraction tau of the motion.
-    RigidTransform at(double tau) const
+    /// The pose at fraction tau of the motion (interpolated into the scratch state).
+    RigidTransform at(double tau)
     {
         si_->getStateSpace()->interpolate(s1_, s2_, tau, state_);
         return poseOfState(state_, planar_);
     }
     /// The scratch state, for other interpolations of the same motion.
-    ompl::base::State *scratch() const { return state_; }
+    ompl::base::State *scratch() { return state_; }
 
 private:
     ompl::base::SpaceInformation *si_;
@@ -350,7 +350,7 @@ ContinuousMotionValidator::bracketTranslation(const ompl::base::State *s1, const
     Report report;
     report.lastFree = std::max(0.0, first.time - 0.5 * tolerance);
     const double blockedAt = std::min(1.0, first.time + 0.5 * tolerance);
-    const MotionPoses poses(*si_, s1, s2, planar);
+    MotionPoses poses(*si_, s1, s2, planar);
     const QueryContextPool::Lease context = validity_->contexts().borrow();
     const auto collidesAt = [&](double tau) { return validity_->poseCollides(poses.at(tau), *context); };
     if (collidesAt(report.lastFree) || !collidesAt(blockedAt))
@@ -387,7 +387,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     const bool planar = validity_->planar();
     // One context for every query of this motion (coherence between neighbouring states).
     const QueryContextPool::Lease context = validity_->contexts().borrow();
-    const MotionPoses poses(*si, s1, s2, planar);
+    MotionPoses poses(*si, s1, s2, planar);
     Report report;
     // s1 anchors the certified prefix (surfaces kept apart from a free state keep the robot free),
     // and the last valid state comes from it. The verdict before this search tested it when asked
@@ -565,7 +565,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
     const bool planar = validity_->planar();
     // One context for every query of this motion (coherence between neighbouring states).
     const QueryContextPool::Lease context = validity_->contexts().borrow();
-    const MotionPoses poses(*si, s1, s2, planar);
+    MotionPoses poses(*si, s1, s2, planar);
     Report report;
     const auto contact = [&](double at) {
         report.contactFound = true;
@@ -602,7 +602,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::verdict(const ompl:
         if (validity_->poseCollides(poses.at(tau), *context))
             return contact(tau);
     }
-    // s2 itself, which OMPL's state at tau = 1 differs from by rates.endTurn.
+    // s2 itself, which OMPL's state at tau = 1 differs from by the rates' endTurn.
     if (validity_->poseCollides(p2, *context))
         return contact(1.0);
 
