@@ -381,6 +381,57 @@ namespace
 {
 using FaceList = std::vector<std::pair<Triangle, std::uint32_t>>;
 
+// The shells of a closed component's distinct faces (sorted by key): faces joined across every
+// edge that exactly two of them share. Two closed surfaces that meet only at vertices, or at edges
+// that more than two faces share (a cube with a tetrahedron inside touching one of its corners),
+// come apart; each holds a solid, and parity over their union would count a point inside both as
+// outside. Returns the shells when every one of them is closed, else none (the component then
+// stays one solid, decided by parity as before).
+std::vector<FaceList> closedShells(const FaceList &faces)
+{
+    struct EdgeUse
+    {
+        std::uint32_t a, b, face;
+        bool operator<(const EdgeUse &o) const { return a != o.a ? a < o.a : b != o.b ? b < o.b : face < o.face; }
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * faces.size());
+    for (std::uint32_t f = 0; f < faces.size(); ++f)
+    {
+        const Triangle &t = faces[f].first;  // sorted corners
+        uses.push_back({t[0], t[1], f});
+        uses.push_back({t[1], t[2], f});
+        uses.push_back({t[0], t[2], f});
+    }
+    std::sort(uses.begin(), uses.end());
+    UnionFind shells(faces.size());
+    for (std::size_t i = 0; i < uses.size();)
+    {
+        std::size_t j = i;
+        while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b)
+            ++j;
+        if (j - i == 2)
+            shells.unite(uses[i].face, uses[i + 1].face);
+        i = j;
+    }
+    std::vector<std::int64_t> shellOfRoot(faces.size(), -1);
+    std::vector<FaceList> out;
+    for (std::uint32_t f = 0; f < faces.size(); ++f)
+    {
+        std::int64_t &slot = shellOfRoot[shells.find(f)];
+        if (slot < 0)
+        {
+            slot = std::int64_t(out.size());
+            out.emplace_back();
+        }
+        out[std::size_t(slot)].push_back(faces[f]);  // still sorted by key
+    }
+    if (out.size() > 1 &&
+        !std::all_of(out.begin(), out.end(), [](const FaceList &shell) { return everyEdgeEven(shell); }))
+        return {};
+    return out;
+}
+
 // The components of `mesh` given its canonical vertices; `closedFaces`, if given, receives the
 // distinct faces of each component (empty for open ones), which the closedness test sorts anyway.
 std::vector<MeshComponent> componentsOf(const TriangleMesh &mesh, const std::vector<std::uint32_t> &canonical,
@@ -407,14 +458,58 @@ std::vector<MeshComponent> componentsOf(const TriangleMesh &mesh, const std::vec
         for (int k = 0; k < 3; ++k)
             c.bounds.extend(mesh.corner(i, k));
     }
-    if (closedFaces)
-        closedFaces->assign(components.size(), {});
-    for (std::size_t k = 0; k < components.size(); ++k)
+    // Closed components that split into closed shells become those shells, each a solid.
+    std::vector<MeshComponent> split;
+    std::vector<FaceList> splitFaces;
+    for (MeshComponent &component : components)
     {
-        FaceList faces = distinctFaces(mesh, canonical, components[k].triangles);
-        components[k].closed = everyEdgeEven(faces);
-        if (closedFaces && components[k].closed)
-            (*closedFaces)[k] = std::move(faces);
+        FaceList faces = distinctFaces(mesh, canonical, component.triangles);
+        component.closed = everyEdgeEven(faces);
+        std::vector<FaceList> shells;
+        if (component.closed)
+            shells = closedShells(faces);
+        if (shells.size() <= 1)
+        {
+            splitFaces.push_back(component.closed ? std::move(faces) : FaceList());
+            split.push_back(std::move(component));
+            continue;
+        }
+        // Each triangle goes to the shell of its face (a repeated face to the shell of the one kept).
+        std::vector<std::pair<Triangle, std::uint32_t>> shellOfFace;
+        for (std::uint32_t s = 0; s < shells.size(); ++s)
+            for (const auto &f : shells[s])
+                shellOfFace.emplace_back(f.first, s);
+        std::sort(shellOfFace.begin(), shellOfFace.end());
+        std::vector<MeshComponent> parts(shells.size());
+        for (std::uint32_t t : component.triangles)
+        {
+            const Triangle key = faceKey(mesh.triangles[t], canonical);
+            const auto it = std::lower_bound(shellOfFace.begin(), shellOfFace.end(), std::make_pair(key, 0u));
+            MeshComponent &part = parts[it->second];
+            part.triangles.push_back(t);
+            for (int k = 0; k < 3; ++k)
+                part.bounds.extend(mesh.corner(t, k));
+        }
+        for (std::size_t s = 0; s < shells.size(); ++s)
+        {
+            parts[s].closed = true;
+            split.push_back(std::move(parts[s]));
+            splitFaces.push_back(std::move(shells[s]));
+        }
+    }
+    // Ordered by their smallest triangle index, as meshComponents() promises.
+    std::vector<std::size_t> order(split.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return split[a].triangles.front() < split[b].triangles.front(); });
+    components.clear();
+    if (closedFaces)
+        closedFaces->clear();
+    for (std::size_t k : order)
+    {
+        components.push_back(std::move(split[k]));
+        if (closedFaces)
+            closedFaces->push_back(std::move(splitFaces[k]));
     }
     return components;
 }

@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <iterator>
 #include <limits>
@@ -362,6 +363,63 @@ std::pair<int, std::string> objLineStatementProblem(std::string_view data)
         if (indices < 2)
             return {statementLine, "its line statement ('l') has " + std::to_string(indices) + " vertex index" +
                                        (indices == 1 ? "" : "es") + " (a line needs two or more)"};
+    }
+    return {0, {}};
+}
+
+// Whether text data starts with a UTF-8 byte order mark, which assimp 5.2's OBJ reader takes for
+// part of the first statement (a first vertex was lost and every face index after it shifted).
+bool startsWithByteOrderMark(std::string_view data) { return data.substr(0, 3) == "\xEF\xBB\xBF"; }
+
+// The first vertex statement (`v`) of OBJ data whose coordinates assimp 5.2's OBJ reader would
+// take wrongly, as its line number and why (line 0 when there is none). The reader reads "nan" and
+// other words that are not numbers as something (a face through such a vertex was then dropped
+// as degenerate without a word), and a statement of 5 or 7 numbers shifts the vertices after it
+// (a face index then lies out of range, or points at the wrong vertex), as it does after an
+// indented statement, which it skips. A statement is accepted at the start of its line with 3
+// (x y z), 4 (x y z w) or 6 (x y z r g b) finite numbers, up to a comment ('#'). Statements
+// continued with a backslash are left to the reader.
+std::pair<int, std::string> objVertexStatementProblem(std::string_view data)
+{
+    if (startsWithByteOrderMark(data))
+        data.remove_prefix(3);
+    int line = 0;
+    for (std::size_t start = 0; start < data.size();)
+    {
+        // A line ends at \n, \r\n or a lone \r, as the reader's lines do.
+        std::size_t end = data.find_first_of("\r\n", start);
+        if (end == std::string_view::npos)
+            end = data.size();
+        ++line;
+        std::string_view text = data.substr(start, end - start);
+        start = end + (data.substr(end, 2) == "\r\n" ? 2 : 1);
+        if (const std::size_t hash = text.find('#'); hash != std::string_view::npos)
+            text = text.substr(0, hash);
+        while (!text.empty() && (text.back() == ' ' || text.back() == '\t'))
+            text.remove_suffix(1);
+        const std::size_t first = text.find_first_not_of(" \t");
+        if (first == std::string_view::npos || (text.substr(first, 2) != "v " && text.substr(first, 2) != "v\t"))
+            continue;
+        if (first > 0)
+            return {line, "its vertex statement ('v') is indented, and the OBJ reader reads only a 'v' that "
+                          "starts its line as one (the vertices after it would shift)"};
+        if (text.back() == '\\')
+            continue;
+        int numbers = 0;
+        for (std::size_t w = first + 1; (w = text.find_first_not_of(" \t", w)) != std::string_view::npos;)
+        {
+            const std::size_t wordEnd = std::min(text.find_first_of(" \t", w), text.size());
+            const std::string word(text.substr(w, wordEnd - w));
+            w = wordEnd;
+            char *parsed = nullptr;
+            const double value = std::strtod(word.c_str(), &parsed);
+            if (parsed != word.c_str() + word.size() || !std::isfinite(value))
+                return {line, "its vertex statement ('v') holds '" + word.substr(0, 20) + "', not a finite number"};
+            ++numbers;
+        }
+        if (numbers != 3 && numbers != 4 && numbers != 6)
+            return {line, "its vertex statement ('v') holds " + std::to_string(numbers) +
+                              " numbers; the OBJ reader takes 3 (x y z), 4 (x y z w) or 6 (x y z r g b)"};
     }
     return {0, {}};
 }
@@ -1275,8 +1333,12 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     if (kind == "zae" || data.substr(0, 4) == std::string_view("PK\x03\x04", 4))
         throw InputError(name, 0, "a zip archive (.zae and the like) is not read: unpack the mesh file it holds");
     if (kind == "obj" || !importer.IsExtensionSupported(kind.c_str()))
+    {
         if (const auto [line, problem] = objLineStatementProblem(data); !problem.empty())
             throw InputError(name, line, "malformed OBJ file: " + problem);
+        if (const auto [line, problem] = objVertexStatementProblem(data); !problem.empty())
+            throw InputError(name, line, "malformed OBJ file: " + problem);
+    }
     const std::vector<std::string_view> tokens = leadingTokens(data, 5);
     const std::string first = tokens.empty() ? std::string() : lowercase(tokens.front());
 
@@ -1532,7 +1594,13 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
     // reading, and reads at most one byte past the limit.
     const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
     const std::string content = readInputFile(path, "mesh file", maxBytes);
-    rejectBeforeImport(content, extensionOf(path), path, *importer.importer_);
+    const std::string extension = extensionOf(path);
+    rejectBeforeImport(content, extension, path, *importer.importer_);
+    // An OBJ file with a byte order mark is read from these bytes without it (its .mtl library is
+    // then not read: it holds no geometry).
+    if (lowercase(extension) == "obj" && startsWithByteOrderMark(content))
+        return loadFrom(*importer.importer_, Source{path, true, std::string_view(content).substr(3), &extension}, role,
+                        limits);
     // assimp then reads the file again by path, not these bytes: a mesh's own references (an OBJ's
     // .mtl library, a COLLADA file's external parts) resolve only beside the file.
     return loadFrom(*importer.importer_, Source{path, false, {}, nullptr}, role, limits);
@@ -1546,6 +1614,8 @@ LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, con
         throw InputError(sourceName, 0, "mesh data is empty");
     rejectAboveByteLimit(data.size(), "data", sourceName, limits);
     rejectBeforeImport(data, formatHint, sourceName, *importer.importer_);
+    if (lowercase(formatHint) == "obj" && startsWithByteOrderMark(data))
+        data.remove_prefix(3);  // as loadMesh: the OBJ reader takes the mark for part of a statement
     return loadFrom(*importer.importer_, Source{sourceName, true, data, &formatHint}, role, limits);
 }
 

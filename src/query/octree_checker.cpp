@@ -51,7 +51,7 @@ OctreeChecker::OctreeChecker(CollisionScene scene, std::string name, Octree::Lim
 double OctreeChecker::toleranceFor(const RigidTransform &worldFromRobot) const
 {
     // As the volume trees: 1e-10 of the coordinates involved covers rounding in the box tests.
-    return 1e-10 * (1.0 + worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
+    return 1e-10 * (worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
 }
 
 bool OctreeChecker::doCollides(const RigidTransform &worldFromRobot, QueryContext &context) const

@@ -271,8 +271,9 @@ template <class Volume>
 double VolumeTreeChecker<Volume>::toleranceFor(const RigidTransform &worldFromRobot) const
 {
     // Rounding in the box tests scales with the coordinates involved; 1e-10 of them covers it
-    // many times over while costing nothing measurable in culling.
-    return 1e-10 * (1.0 + worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
+    // many times over while costing nothing measurable in culling. Relative only: an absolute
+    // floor would be the size of a scene modelled at 1e-9 and widen its proximity tests by it.
+    return 1e-10 * (worldFromRobot.translation.norm() + robotRadius_ + environmentMagnitude_);
 }
 
 template <class Volume>

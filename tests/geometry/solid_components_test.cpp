@@ -352,6 +352,55 @@ TEST(SolidQuery, BoxesAgainstAnalyticReference)
     expectMatchesReference("nested boxes", nested, inBox(lo, hi), specials, -2, 2, kPoints, 6);
 }
 
+TEST(SolidQuery, ShellsMeetingAtACornerOrAnEdgeEachHoldASolid)
+{
+    // A tetrahedron inside a cube, touching it only at the cube's corner or along one of its edges:
+    // one connected component, two closed shells. Parity over both would call the points inside
+    // the tetrahedron outside; each shell is a solid, so the union (the cube) is inside.
+    const Vec3 lo(0, 0, 0), hi(4, 4, 4);
+    const std::vector<double> specials = {-1, 0, 0.5, 1, 1.5, 2, 3, 4, 5};
+    struct Case
+    {
+        const char *name;
+        TriangleMesh tetra;
+        Vec3 inTetra;
+    };
+    const Case cases[] = {
+        {"tetrahedron at a corner", tetrahedron(Vec3(0, 0, 0), Vec3(3, 1.5, 1.5), Vec3(1.5, 3, 1.5), Vec3(1.5, 1.5, 3)),
+         Vec3(1.5, 1.5, 1.5)},
+        {"tetrahedron along an edge", tetrahedron(Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(2, 3, 1), Vec3(2, 1, 3)),
+         Vec3(2, 1, 1)},
+    };
+    for (const Case &c : cases)
+    {
+        for (const TriangleMesh &mesh :
+             {merged(test::boxMesh(lo, hi), c.tetra), withReversedDuplicates(merged(c.tetra, test::boxMesh(lo, hi)))})
+        {
+            const auto components = meshComponents(mesh);
+            ASSERT_EQ(components.size(), 2u) << c.name;
+            EXPECT_TRUE(components[0].closed && components[1].closed) << c.name;
+            EXPECT_LT(components[0].triangles.front(), components[1].triangles.front()) << c.name;
+            const SolidQuery query(std::make_shared<TriangleMesh>(mesh));
+            EXPECT_EQ(query.closedComponentCount(), 2u) << c.name;
+            EXPECT_TRUE(query.insideAnySolid(c.inTetra)) << c.name;
+            const std::size_t inside =
+                expectMatchesReference(c.name, mesh, inBox(lo, hi), specials, -1, 5, kPoints, 31);
+            EXPECT_GT(inside, kPoints / 10) << c.name;
+        }
+    }
+
+    // A surface that closes only as a whole stays one solid: two open boxes (a face missing from
+    // each) glued along the rims of the missing faces.
+    TriangleMesh a = test::boxMesh(lo, Vec3(2, 4, 4)), b = test::boxMesh(Vec3(2, 0, 0), Vec3(4, 4, 4));
+    a.triangles.erase(a.triangles.begin() + 10, a.triangles.begin() + 12);  // a's face x = 2
+    b.triangles.erase(b.triangles.begin() + 8, b.triangles.begin() + 10);   // b's face x = 2
+    const TriangleMesh glued = merged(a, b);
+    const auto components = meshComponents(glued);
+    ASSERT_EQ(components.size(), 1u);
+    EXPECT_TRUE(components[0].closed);
+    expectMatchesReference("two open boxes closing together", glued, inBox(lo, hi), specials, -1, 5, kPoints / 4, 32);
+}
+
 TEST(SolidQuery, TetrahedronAgainstAnalyticReference)
 {
     const std::vector<double> specials = {-1, -0.5, 0, 0.5, 1, 1.5, 2, 2.5, 3, 4, 4.5};

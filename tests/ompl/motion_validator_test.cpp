@@ -115,6 +115,50 @@ TEST(MotionValidator, DiscreteTunnelsThroughAThinWallContinuousDoesNot)
     si->freeState(last.first);
 }
 
+// The same scene at every scale: a unit box robot beside a thin wall, both scaled by s. A motion
+// that ends 0.09 s from the wall, and one that slides along it at that gap, are free, and a motion
+// through the wall is bracketed to 1e-6 of its length before the contact. The checkers' rounding
+// allowance once had an absolute floor of 1e-10, which at s = 1e-9 took a free gap of 9e-11 for a
+// near contact and moved the bracket at s = 1e-6 by 1e-5.
+TEST(MotionValidator, NearMotionsAreFreeAndContactsBracketedAtEveryScale)
+{
+    for (const double s : {1e-9, 1e-6, 1.0, 1e6})
+    {
+        TriangleMesh wall = thinWall();
+        for (Vec3 &v : wall.vertices)
+            v *= s;
+        LoadedProblem problem = makeProblem(test::boxMesh(Vec3::Constant(-0.5 * s), Vec3::Constant(0.5 * s)), wall);
+        problem.config.volumeX = problem.config.volumeY = problem.config.volumeZ = std::make_pair(-50.0 * s, 50.0 * s);
+        for (const std::string checker : {"auto", "obb", "aabb", "octree", "bruteforce"})
+        {
+            PlanningProblem planning = makePlanningProblem(problem, makeChecker(checker, problem.scene));
+            planning.setup->setup();
+            const auto si = planning.setup->getSpaceInformation();
+            auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+            continuous.setContactTolerance(1e-6);
+            ob::ScopedState<> a(si), b(si);
+            const std::string where = checker + " at scale " + std::to_string(s);
+
+            setPose(a.get(), Vec3(-5 * s, 0, 0), 0.0);
+            setPose(b.get(), Vec3(-0.59 * s, 0, 0), 0.0);
+            EXPECT_TRUE(continuous.checkMotion(a.get(), b.get())) << "towards the wall, " << where;
+            setPose(a.get(), Vec3(-0.59 * s, -2 * s, 0), 0.0);
+            setPose(b.get(), Vec3(-0.59 * s, 2 * s, 0), 0.0);
+            EXPECT_TRUE(continuous.checkMotion(a.get(), b.get())) << "along the wall, " << where;
+
+            // Through the wall: the front face (x + 0.5 s) reaches it at x = -0.5 s, fraction 0.45.
+            setPose(a.get(), Vec3(-5 * s, 0, 0), 0.0);
+            setPose(b.get(), Vec3(5 * s, 0, 0), 0.0);
+            std::pair<ob::State *, double> last{si->allocState(), 0.0};
+            EXPECT_FALSE(continuous.checkMotion(a.get(), b.get(), last)) << where;
+            EXPECT_LE(last.second, 0.45 + 1e-12) << where;
+            EXPECT_GE(last.second, 0.45 - 1e-6 - 1e-12) << where;
+            EXPECT_TRUE(si->isValid(last.first)) << where;
+            si->freeState(last.first);
+        }
+    }
+}
+
 TEST(MotionValidator, ContactsBetweenRakedStatesOfAnyWidthAreFound)
 {
     // A plate 0.01 thick along the motion crossing slabs, so that the colliding stretch of the

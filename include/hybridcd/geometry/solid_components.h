@@ -19,7 +19,8 @@
 
 namespace hcd
 {
-/// One connected component of a mesh (triangles sharing vertices, after welding), closed or not.
+/// One connected component of a mesh (triangles sharing vertices, after welding), or one closed
+/// shell of one (see meshComponents()), closed or not.
 struct MeshComponent
 {
     std::vector<std::uint32_t> triangles;  ///< indices into TriangleMesh::triangles, ascending
@@ -30,8 +31,11 @@ struct MeshComponent
 /// Splits the mesh into connected components (union-find over shared vertices; vertices with
 /// identical coordinates count as one, so the mesh need not be welded) and marks each closed when,
 /// after removing triangles that repeat another with the same vertex set (either orientation),
-/// every undirected edge is used by an even, non-zero number of the remaining triangles.
-/// Components are ordered by their smallest triangle index.
+/// every undirected edge is used by an even, non-zero number of the remaining triangles. A closed
+/// component made of closed shells that meet only at vertices, or at edges more than two faces
+/// share, is split into those shells, each a closed component: a solid inside another that touches
+/// it at a corner is then a solid of its own, and a point inside both is inside (parity over the
+/// two would call it outside). Components are ordered by their smallest triangle index.
 std::vector<MeshComponent> meshComponents(const TriangleMesh &mesh);
 
 /// Exact point-in-solid queries against the closed components of a mesh. Immutable after
