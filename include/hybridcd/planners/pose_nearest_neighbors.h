@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 #include "hybridcd/planners/pose_metric.h"
+#include "hybridcd/query/traversal_stack.h"
 
 #include <ompl/datastructures/NearestNeighbors.h>
 #include <ompl/util/Exception.h>
@@ -78,7 +79,7 @@ public:
     {
         if (elements_.empty())
             throw ompl::Exception("No elements found in nearest neighbors data structure");
-        Neighbours best;
+        OneNeighbour best;
         search(data, 1, std::numeric_limits<double>::infinity(), best);
         // Every distance NaN: the first element, as NearestNeighborsLinear returns.
         return best.empty() ? elements_.front() : elements_[best.front().second];
@@ -236,7 +237,28 @@ private:
     }
 
     // Collects into best (a max-heap) the up-to-k elements nearest to data within radius.
-    void search(const T &data, std::size_t k, double radius, Neighbours &best) const
+    // What a search for one neighbour keeps, held in place: no allocation per search.
+    struct OneNeighbour
+    {
+        std::pair<double, std::uint32_t> entry;
+        bool held = false;
+        bool empty() const { return !held; }
+        std::size_t size() const { return held ? 1 : 0; }
+        void clear() { held = false; }
+        std::pair<double, std::uint32_t> *begin() { return &entry; }
+        std::pair<double, std::uint32_t> *end() { return &entry + size(); }
+        const std::pair<double, std::uint32_t> &front() const { return entry; }
+        std::pair<double, std::uint32_t> &back() { return entry; }
+        void emplace_back(double d, std::uint32_t index)
+        {
+            entry = {d, index};
+            held = true;
+        }
+    };
+
+    // Best: Neighbours, or OneNeighbour when k is 1.
+    template <class Best>
+    void search(const T &data, std::size_t k, double radius, Best &best) const
     {
         best.clear();
         const PoseCoordinates query = metric_.coordinates(stateOf_(data));
@@ -301,12 +323,13 @@ private:
         };
         // Depth first, the nearer child first; a box whose bound exceeds the bar holds nothing
         // that could enter best.
-        std::vector<Bounded> stack;
-        stack.push_back(boundOf(0));
+        // Depth first, at most one waiting box per level: the stack's fixed storage holds them all
+        // but in a degenerate tree, and a search allocates nothing.
+        BasicTraversalStack<Bounded> stack;
+        stack.push(boundOf(0));
         while (!stack.empty())
         {
-            Bounded top = stack.back();
-            stack.pop_back();
+            Bounded top = stack.pop();
             if (beyondBar(top))
                 continue;
             const Node &node = nodes_[top.node];
@@ -337,7 +360,7 @@ private:
             {
                 Bounded only = boundOf(firstOut ? node.firstChild + 1 : node.firstChild);
                 if (!beyondBar(only))
-                    stack.push_back(only);
+                    stack.push(only);
                 continue;
             }
             Bounded first = boundOf(node.firstChild);
@@ -348,9 +371,9 @@ private:
             Bounded &near = firstNearer ? first : second;
             Bounded &far = firstNearer ? second : first;
             if (!beyondBar(far))
-                stack.push_back(far);
+                stack.push(far);
             if (!beyondBar(near))
-                stack.push_back(near);
+                stack.push(near);
         }
     }
 
