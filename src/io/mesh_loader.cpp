@@ -371,57 +371,142 @@ std::pair<int, std::string> objLineStatementProblem(std::string_view data)
 // part of the first statement (a first vertex was lost and every face index after it shifted).
 bool startsWithByteOrderMark(std::string_view data) { return data.substr(0, 3) == "\xEF\xBB\xBF"; }
 
-// The first vertex statement (`v`) of OBJ data whose coordinates assimp 5.2's OBJ reader would
-// take wrongly, as its line number and why (line 0 when there is none). The reader reads "nan" and
-// other words that are not numbers as something (a face through such a vertex was then dropped
-// as degenerate without a word), and a statement of 5 or 7 numbers shifts the vertices after it
-// (a face index then lies out of range, or points at the wrong vertex), as it does after an
-// indented statement, which it skips. A statement is accepted at the start of its line with 3
-// (x y z), 4 (x y z w) or 6 (x y z r g b) finite numbers, up to a comment ('#'). Statements
-// continued with a backslash are left to the reader.
-std::pair<int, std::string> objVertexStatementProblem(std::string_view data)
+// Calls visit(line, text) for each line of OBJ data, from line 1, with `text` its content without
+// the line end (\n, \r\n or a lone \r, as the reader's lines end) and after a byte order mark,
+// until visit returns false.
+template <class Visit>
+void forEachObjLine(std::string_view data, Visit &&visit)
 {
     if (startsWithByteOrderMark(data))
         data.remove_prefix(3);
     int line = 0;
     for (std::size_t start = 0; start < data.size();)
     {
-        // A line ends at \n, \r\n or a lone \r, as the reader's lines do.
         std::size_t end = data.find_first_of("\r\n", start);
         if (end == std::string_view::npos)
             end = data.size();
-        ++line;
-        std::string_view text = data.substr(start, end - start);
+        const std::string_view text = data.substr(start, end - start);
         start = end + (data.substr(end, 2) == "\r\n" ? 2 : 1);
+        if (!visit(++line, text))
+            return;
+    }
+}
+
+// The statement keyword `keyword` ("v" or "f") that begins `text` after blanks, as the position of
+// its first letter, or npos when text holds another statement.
+std::size_t objStatementAt(std::string_view text, char keyword)
+{
+    const std::size_t first = text.find_first_not_of(" \t");
+    if (first == std::string_view::npos || text[first] != keyword || first + 1 >= text.size() ||
+        (text[first + 1] != ' ' && text[first + 1] != '\t'))
+        return std::string_view::npos;
+    return first;
+}
+
+// Whether an OBJ statement's text ends in a backslash, which joins the next line to it.
+bool continuedOnNextLine(std::string_view text)
+{
+    const std::size_t last = text.find_last_not_of(" \t");
+    return last != std::string_view::npos && text[last] == '\\';
+}
+
+// Calls word(w) for each blank-separated word of text after position `from`.
+template <class Word>
+bool forEachWord(std::string_view text, std::size_t from, Word &&word)
+{
+    for (std::size_t w = from; (w = text.find_first_not_of(" \t", w)) != std::string_view::npos;)
+    {
+        const std::size_t wordEnd = std::min(text.find_first_of(" \t", w), text.size());
+        if (!word(text.substr(w, wordEnd - w)))
+            return false;
+        w = wordEnd;
+    }
+    return true;
+}
+
+// The first vertex (`v`) or face (`f`) statement of OBJ data that assimp 5.2's OBJ reader would
+// take wrongly or refuse without a line, as its line number and why (line 0 when there is none):
+// - the reader reads "nan" and other words that are not numbers as some number (a face through
+//   such a vertex was then dropped as degenerate, with no error), and a statement of 5 or 7
+//   numbers shifts the vertices after it (a face index then lies out of range, or names the wrong
+//   vertex); a vertex statement is accepted with 3 (x y z), 4 (x y z w) or 6 (x y z r g b) finite
+//   numbers, up to a comment ('#');
+// - it skips an indented statement, which shifts the vertices after it or drops a face silently;
+// - a face's vertex index (before any '/') must be a whole number naming a vertex of the file: 1
+//   to the number of vertex statements, or -1 to minus the number before the face.
+// Statements continued with a backslash are left to the reader.
+std::pair<int, std::string> objStatementProblem(std::string_view data)
+{
+    std::size_t vertices = 0;
+    std::pair<int, std::string> problem{0, {}};
+    forEachObjLine(data, [&](int line, std::string_view text) {
+        const std::size_t at = objStatementAt(text, 'v');
+        if (at == std::string_view::npos)
+            return true;
+        if (at > 0)
+        {
+            problem = {line, "its vertex statement ('v') is indented, and the OBJ reader reads only a 'v' that "
+                             "starts its line as one (the vertices after it would shift)"};
+            return false;
+        }
+        ++vertices;
         if (const std::size_t hash = text.find('#'); hash != std::string_view::npos)
             text = text.substr(0, hash);
-        while (!text.empty() && (text.back() == ' ' || text.back() == '\t'))
-            text.remove_suffix(1);
-        const std::size_t first = text.find_first_not_of(" \t");
-        if (first == std::string_view::npos || (text.substr(first, 2) != "v " && text.substr(first, 2) != "v\t"))
-            continue;
-        if (first > 0)
-            return {line, "its vertex statement ('v') is indented, and the OBJ reader reads only a 'v' that "
-                          "starts its line as one (the vertices after it would shift)"};
-        if (text.back() == '\\')
-            continue;
+        if (continuedOnNextLine(text))
+            return true;
         int numbers = 0;
-        for (std::size_t w = first + 1; (w = text.find_first_not_of(" \t", w)) != std::string_view::npos;)
-        {
-            const std::size_t wordEnd = std::min(text.find_first_of(" \t", w), text.size());
-            const std::string word(text.substr(w, wordEnd - w));
-            w = wordEnd;
+        const bool finite = forEachWord(text, 1, [&](std::string_view w) {
+            const std::string word(w);
             char *parsed = nullptr;
             const double value = std::strtod(word.c_str(), &parsed);
             if (parsed != word.c_str() + word.size() || !std::isfinite(value))
-                return {line, "its vertex statement ('v') holds '" + word.substr(0, 20) + "', not a finite number"};
+            {
+                problem = {line, "its vertex statement ('v') holds '" + word.substr(0, 20) + "', not a finite number"};
+                return false;
+            }
             ++numbers;
+            return true;
+        });
+        if (finite && numbers != 3 && numbers != 4 && numbers != 6)
+            problem = {line, "its vertex statement ('v') holds " + std::to_string(numbers) +
+                                 " numbers; the OBJ reader takes 3 (x y z), 4 (x y z w) or 6 (x y z r g b)"};
+        return problem.second.empty();
+    });
+    if (!problem.second.empty())
+        return problem;
+    std::size_t verticesBefore = 0;
+    forEachObjLine(data, [&](int line, std::string_view text) {
+        verticesBefore += objStatementAt(text, 'v') != std::string_view::npos;
+        const std::size_t at = objStatementAt(text, 'f');
+        if (at == std::string_view::npos)
+            return true;
+        if (at > 0)
+        {
+            problem = {line, "its face statement ('f') is indented, and the OBJ reader reads only an 'f' that "
+                             "starts its line as one (the face would be dropped)"};
+            return false;
         }
-        if (numbers != 3 && numbers != 4 && numbers != 6)
-            return {line, "its vertex statement ('v') holds " + std::to_string(numbers) +
-                              " numbers; the OBJ reader takes 3 (x y z), 4 (x y z w) or 6 (x y z r g b)"};
-    }
-    return {0, {}};
+        if (continuedOnNextLine(text))
+            return true;
+        forEachWord(text, 1, [&](std::string_view word) {
+            const std::string_view index = word.substr(0, word.find('/'));
+            const bool negative = !index.empty() && index[0] == '-';
+            const std::string_view digits = index.substr(negative ? 1 : 0);
+            const bool whole = !digits.empty() && digits.size() <= 9 &&
+                               std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+            const std::size_t value = whole ? std::size_t(std::stoul(std::string(digits))) : 0;
+            if (!whole || value == 0 || value > (negative ? verticesBefore : vertices))
+            {
+                problem = {line, "its face statement ('f') holds '" + std::string(word.substr(0, 20)) +
+                                     "', not the index of one of the file's " + std::to_string(vertices) + " vertices" +
+                                     (negative ? " (counted back from the face)" : "")};
+                return false;
+            }
+            return true;
+        });
+        return problem.second.empty();
+    });
+    return problem;
 }
 
 // Line number (from 1) of byte `offset` of `data`, for errors.
@@ -1336,7 +1421,7 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     {
         if (const auto [line, problem] = objLineStatementProblem(data); !problem.empty())
             throw InputError(name, line, "malformed OBJ file: " + problem);
-        if (const auto [line, problem] = objVertexStatementProblem(data); !problem.empty())
+        if (const auto [line, problem] = objStatementProblem(data); !problem.empty())
             throw InputError(name, line, "malformed OBJ file: " + problem);
     }
     const std::vector<std::string_view> tokens = leadingTokens(data, 5);

@@ -341,6 +341,20 @@ TEST(MeshLoader, ObjVerticesTheReaderWouldMisreadAreRefusedWithTheirLine)
          "obj:3: malformed OBJ file: its vertex statement ('v') is indented"},
         {"v inf 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n",
          "obj:1: malformed OBJ file: its vertex statement ('v') holds 'inf', not a finite number"},
+        // Face indices the reader refused without a line, or a face it dropped without a word.
+        {"v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nf 1 2 5\n",
+         "obj:4: malformed OBJ file: its face statement ('f') holds '5', not the index of one of the file's 3 "
+         "vertices"},
+        {"v 4 -5 -5\nv 6 -5 -5\nf 1 2 -3\nv 0 5 -5\n",
+         "obj:3: malformed OBJ file: its face statement ('f') holds '-3', not the index of one of the file's 3 "
+         "vertices (counted back from the face)"},
+        {"v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nf 1 2 0\n", "obj:4: malformed OBJ file: its face statement ('f') holds '0'"},
+        {"v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nf 1 2 3.5\n",
+         "obj:4: malformed OBJ file: its face statement ('f') holds '3.5'"},
+        {"v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nf 1 2 3 # c\n",
+         "obj:4: malformed OBJ file: its face statement ('f') holds '#'"},
+        {"v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nv 5 5 5\nf 1 2 3\n f 1 2 4\n",
+         "obj:6: malformed OBJ file: its face statement ('f') is indented"},
     };
     for (const auto &[text, message] : refused)
         for (const std::string format : {"obj", ""})
@@ -361,10 +375,14 @@ TEST(MeshLoader, ObjVerticesTheReaderWouldMisreadAreRefusedWithTheirLine)
     const std::string plain = "v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nv 5 5 5\n" + faces;
     const LoadedMesh expected = loadMeshFromMemory(plain, "obj", MeshRole::Environment, "plain.obj");
     ASSERT_EQ(expected.mesh->triangleCount(), 2u);
-    for (const std::string text : {"v 4 -5 -5 1\nv 6 -5 -5 1\nv 0 5 -5 1\nv 5 5 5 1\n" + faces,
-                                   "v 4 -5 -5 1 0 0\nv 6 -5 -5 0 1 0\nv 0 5 -5 0 0 1\nv 5 5 5 1 1 1\n" + faces,
-                                   "v\t4 -5 -5 # first\r\nv 6 -5 -5\rv 0 5 -5\t\nv 5 5 5\n# v nan\n" + faces,
-                                   "v 4e0 -5.0 -.5e1\nv +6 -5 -5\nv 0 5 -5\nv 5 5 5\nvn 0 0 1\nvt 0.5 0.5\n" + faces})
+    for (const std::string text :
+         {"v 4 -5 -5 1\nv 6 -5 -5 1\nv 0 5 -5 1\nv 5 5 5 1\n" + faces,
+          "v 4 -5 -5 1 0 0\nv 6 -5 -5 0 1 0\nv 0 5 -5 0 0 1\nv 5 5 5 1 1 1\n" + faces,
+          "v\t4 -5 -5 # first\r\nv 6 -5 -5\rv 0 5 -5\t\nv 5 5 5\n# v nan\n" + faces,
+          "v 4e0 -5.0 -.5e1\nv +6 -5 -5\nv 0 5 -5\nv 5 5 5\nvn 0 0 1\nvt 0.5 0.5\n" + faces,
+          // Faces before their vertices, indices counted back, texture and normal indices.
+          faces + "v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nv 5 5 5\n",
+          std::string("v 4 -5 -5\nv 6 -5 -5\nv 0 5 -5\nf -3 -2 -1\nv 5 5 5\nf -4/1 -3//1 -1/1/1\nvt 0 0\nvn 0 0 1\n")})
     {
         const LoadedMesh m = loadMeshFromMemory(text, "obj", MeshRole::Environment, "variant.obj");
         EXPECT_EQ(m.mesh->vertices, expected.mesh->vertices) << text;
