@@ -133,6 +133,17 @@ double magnitudeOf(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b
         scale = std::max(scale, v->cwiseAbs().maxCoeff());
     return scale;
 }
+
+/// Whether the two triangles' axis-aligned bounding boxes are apart along some axis (touching
+/// boxes are not apart), which rules out any common point.
+bool boxesApart(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1, const Vec3 &b2)
+{
+    for (int k = 0; k < 3; ++k)
+        if (std::max({a0[k], a1[k], a2[k]}) < std::min({b0[k], b1[k], b2[k]}) ||
+            std::max({b0[k], b1[k], b2[k]}) < std::min({a0[k], a1[k], a2[k]}))
+            return true;
+    return false;
+}
 }  // namespace
 
 double disjointTriangleDistanceBelow(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, const Vec3 &b0, const Vec3 &b1,
@@ -159,7 +170,9 @@ bool trianglesWithinDistance(const Vec3 &a0, const Vec3 &a1, const Vec3 &a2, con
     if (std::sqrt(triangleFeaturesSquared(a0, a1, a2, b0, b1, b2)) <= bound)
         return true;
     // 3. Otherwise only an intersection (distance 0) puts them within; none is possible when one
-    //    triangle lies certainly on one side of the other's plane (a positive gap, as orient3d has it).
-    return bound >= 0.0 && !(gap > 0.0) && trianglesIntersect(a0, a1, a2, b0, b1, b2);
+    //    triangle lies certainly on one side of the other's plane (a positive gap, as orient3d has it),
+    //    nor when their bounding boxes are apart along an axis (exact comparisons of coordinates).
+    return bound >= 0.0 && !(gap > 0.0) && !boxesApart(a0, a1, a2, b0, b1, b2) &&
+           trianglesIntersect(a0, a1, a2, b0, b1, b2);
 }
 }  // namespace hcd
