@@ -26,7 +26,10 @@ struct MotionRates
     double translation = 0.0;  ///< world units per unit of tau
     double angle = 0.0;        ///< radians per unit of tau
     double endTurn = 0.0;      ///< radians, added to every interval's radial slack
-    bool bounded = false;      ///< false: non-finite states or quaternions off unit length
+    /// OMPL's interpolation keeps s1's rotation at every tau (the endTurn case): its states before
+    /// tau = 1 are then s1's pose translated, which the first-contact search sweeps as they are.
+    bool startRotationHeld = false;
+    bool bounded = false;  ///< false: non-finite states or quaternions off unit length
 };
 
 // p1 and p2 are the poses of s1 and s2 (the callers have them already).
@@ -45,6 +48,9 @@ MotionRates motionRates(const ompl::base::StateSpacePtr &space, const ompl::base
     rates.translation = (p2.translation - p1.translation).norm() * (1.0 + 1e-9);
     rates.angle = turn * (1.0 + 1e-9) + 1e-14;
     rates.endTurn = endTurn * (1.0 + 1e-9);
+    // The state at tau = 1 carrying s1's rotation bit for bit is SO3's copy of s1 (a turn too small
+    // for slerp), which it makes at every tau; slerp's own end state is s2's rotation, rounded.
+    rates.startRotationHeld = endTurn > 0.0 && poseOfState(scratch, planar).rotation == p1.rotation;
     rates.bounded = std::isfinite(rates.translation);
     return rates;
 }
@@ -423,7 +429,6 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     }
 
     const double translationRate = rates->translation, angleRate = rates->angle;
-    const double speed = translationRate + robotRadius_ * angleRate;
 
     // Intervals still to certify, earliest on top. [0, certified] is proven free. Once a contact is
     // seen at `contactAt`, only [certified, contactAt] is searched further, down to the tolerance.
@@ -489,7 +494,14 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         pending.pop_back();
         const double mid = 0.5 * (iv.a + iv.b);
         const double half = 0.5 * (iv.b - iv.a);
-        const double needed = speed * half;  // for the farthest robot point
+        // With a contact known, where OMPL holds s1's rotation (a turn too small for slerp), the
+        // states before tau = 1 are translations of s1's pose: swept as such, without the end
+        // turn's slack, whose reach would otherwise stall the bracket that far before the contact.
+        // Elsewhere (and for a free verdict) every interval covers the turn as the verdict does.
+        const bool translated = rates->startRotationHeld && contactAt <= 1.0 && iv.b < 1.0;
+        const double radialSlack = translated ? 0.0 : angleRate * half + rates->endTurn;
+        // How far the farthest robot point may come, all slack counted.
+        const double needed = translationRate * half + robotRadius_ * radialSlack;
         const RigidTransform pose = poses.at(mid);
         if (++queries > (contactAt <= 1.0 ? kMaxRefinementQueries : kMaxQueries))
         {
@@ -497,8 +509,7 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
             break;
         }
         const IntervalChecks::Outcome outcome =
-            checks.check(iv, pose, translationRate * half, angleRate * half + rates->endTurn,
-                         /*testMiddle=*/spansAtMostOneSegment(iv, n));
+            checks.check(iv, pose, translationRate * half, radialSlack, /*testMiddle=*/spansAtMostOneSegment(iv, n));
         if (outcome.certified)
         {
             certified = iv.b;  // intervals are taken in order: the free prefix grows

@@ -159,6 +159,47 @@ TEST(MotionValidator, NearMotionsAreFreeAndContactsBracketedAtEveryScale)
     }
 }
 
+// Turns too small for slerp (below about 9e-5 rad): OMPL's states keep s1's rotation up to
+// tau = 1, so a rod driven into a post reaches it at the same fraction whatever the turn. The
+// first contact is bracketed to the tolerance among those states; the turn's reach at s2, which
+// every interval of a verdict covers, once stalled the bracket up to 8e-5 before the contact.
+TEST(MotionValidator, FirstContactOfATinyTurnIsBracketedToTheTolerance)
+{
+    TriangleMesh post = test::boxMesh(Vec3(4.6, -1, -1), Vec3(5.6, 1, 1));
+    const LoadedProblem problem = makeProblem(test::boxMesh(Vec3(-4, -0.1, -0.1), Vec3(4, 0.1, 0.1)), post);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const std::string checker : {"auto", "obb"})
+    {
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker(checker, problem.scene));
+        planning.setup->setup();
+        const auto si = planning.setup->getSpaceInformation();
+        auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+        continuous.setContactTolerance(1e-6);
+        for (const double turn : {0.0, 1e-6, 1e-5, 5e-5, 8e-5})
+        {
+            ob::ScopedState<> a(si), b(si);
+            setPose(a.get(), Vec3(-2, 0, 0), 0.0);
+            setPose(b.get(), Vec3(2, 0, 0), turn);
+            // The first colliding fraction among OMPL's states, by bisection with brute force.
+            ob::ScopedState<> s(si);
+            double freeAt = 0.0, collidingAt = 1.0;
+            while (collidingAt - freeAt > 1e-12)
+            {
+                const double mid = 0.5 * (freeAt + collidingAt);
+                si->getStateSpace()->interpolate(a.get(), b.get(), mid, s.get());
+                (reference->collides(poseOfState(s.get(), false)) ? collidingAt : freeAt) = mid;
+            }
+            ASSERT_NEAR(collidingAt, 0.65, 1e-9) << "turn " << turn;
+            std::pair<ob::State *, double> last{si->allocState(), 0.0};
+            EXPECT_FALSE(continuous.checkMotion(a.get(), b.get(), last));
+            EXPECT_LE(last.second, collidingAt) << checker << ", turn " << turn;
+            EXPECT_GE(last.second, collidingAt - 1e-6 - 1e-12) << checker << ", turn " << turn;
+            EXPECT_TRUE(si->isValid(last.first)) << checker << ", turn " << turn;
+            si->freeState(last.first);
+        }
+    }
+}
+
 TEST(MotionValidator, ContactsBetweenRakedStatesOfAnyWidthAreFound)
 {
     // A plate 0.01 thick along the motion crossing slabs, so that the colliding stretch of the
