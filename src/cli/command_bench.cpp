@@ -4,6 +4,7 @@
 #include "command_line.h"
 #include "command_scene.h"
 #include "commands.h"
+#include "planner_watchdog.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/atomic_file.h"
@@ -236,7 +237,7 @@ int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<
         labels += (c ? "," : "") + slots[c].label;
         std::vector<ompl::base::PlannerPtr> planners;
         for (const PlannerRequest &request : requests)
-            planners.push_back(makePlanner(request, si));
+            planners.push_back(plannerForScene(request, si));
         requireDistinctPlannerNames(planners, cl, cfg);
         for (const ompl::base::PlannerPtr &planner : planners)
         {
@@ -259,8 +260,14 @@ int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<
     const std::size_t totalThisShard = std::size_t(run.shardRuns) * slotOf.size();
     std::size_t done = 0;
     std::map<const ompl::base::Planner *, unsigned> runsSoFar;
-    benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) { install(slotOf.at(planner.get())); });
+    // A run that overruns its limit by far ends the benchmark, with nothing written (planner_watchdog.h).
+    PlannerWatchdog watchdog(kBadInput);
+    benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) {
+        install(slotOf.at(planner.get()));
+        watchdog.arm(planner->getName(), run.timeLimit);
+    });
     benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
+        watchdog.disarm();
         const std::size_t c = slotOf.at(planner.get());
         const unsigned local = runsSoFar[planner.get()]++;
         props["collision checks INTEGER"] = std::to_string(validity[c]->checkCount());
@@ -331,6 +338,12 @@ and written in the log; bench/merge_shards.py merges the shards' logs into one e
 
 int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
 {
+    if (cl.text("planner", "") == "help")  // as solve lists them
+    {
+        for (const std::string &n : plannerNames())
+            std::cout << n << '\n';
+        return kSuccess;
+    }
     const auto [shardIndex, shardCount] = parseShard(cl.text("shard", "0/1"));
     // Shards are seeded from one base seed, so that a sharded benchmark is repeatable and no two
     // shards draw the same samples.
@@ -469,13 +482,17 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
     const std::size_t totalThisShard = std::size_t(shardRuns) * slotOf.size();
     std::size_t done = 0;
     std::map<const ompl::base::Planner *, unsigned> runsSoFar;
+    // A run that overruns its limit by far ends the benchmark, with nothing written (planner_watchdog.h).
+    PlannerWatchdog watchdog(kBadInput);
     benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) {
         // Point the space at this configuration's checker and motion validator, and zero its counters.
         CheckerSlot &slot = slots[slotOf.at(planner.get())];
         slot.validity = install(slot);
         slot.validity->resetCounters();
+        watchdog.arm(planner->getName(), timeLimit);
     });
     benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &run) {
+        watchdog.disarm();
         const CheckerSlot &slot = slots[slotOf.at(planner.get())];
         const unsigned local = runsSoFar[planner.get()]++;
         run["collision checks INTEGER"] = std::to_string(slot.validity->checkCount());

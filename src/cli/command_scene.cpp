@@ -2,8 +2,9 @@
 // check, check-motion, clearance and solve on scene problems (several robots, obstacles of their
 // own): every robot's pose on each line, robot 1 first (README, "Scenes of many bodies").
 #include "command_scene.h"
+#include "commands.h"
 #include "motion_verdicts.h"
-
+#include "planner_watchdog.h"
 #include "problem_checks.h"
 
 #include "hybridcd/io/atomic_file.h"
@@ -153,6 +154,18 @@ std::optional<std::size_t> runSceneCheckMotion(const LoadedProblem &problem,
     return verdicts.firstBlocked();
 }
 
+ompl::base::PlannerPtr plannerForScene(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si)
+{
+    try
+    {
+        return makePlanner(request, si);
+    }
+    catch (const std::invalid_argument &e)
+    {
+        throw std::invalid_argument("--planner " + request.type + ": " + e.what());
+    }
+}
+
 int runSceneSolve(const LoadedProblem &problem, const SceneSolveRun &run)
 {
     const auto buildStart = Clock::now();
@@ -161,9 +174,14 @@ int runSceneSolve(const LoadedProblem &problem, const SceneSolveRun &run)
     requireFreeEnds(problem, *scene);
     ScenePlanningProblem planning = makeScenePlanningProblem(problem, scene, run.continuous);
     PlannerRequest request{run.plannerName, "", run.params};
-    planning.setup->setPlanner(makePlanner(request, planning.setup->getSpaceInformation()));
+    planning.setup->setPlanner(plannerForScene(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
-    const ompl::base::PlannerStatus status = planning.setup->solve(run.timeLimit);
+    PlannerWatchdog watchdog(kNotSolved);
+    ompl::base::PlannerStatus status;
+    {
+        const WatchedRun watched(watchdog, planning.setup->getPlanner()->getName(), run.timeLimit);
+        status = planning.setup->solve(run.timeLimit);
+    }
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
     const bool approximate =
         status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION && planning.setup->haveSolutionPath();

@@ -4,9 +4,13 @@
 #pragma once
 
 #include "hybridcd/io/path_file.h"
+#include "hybridcd/io/planner_request.h"
 #include "hybridcd/io/problem_scene.h"
 #include "hybridcd/query/checker_catalogue.h"
 #include "hybridcd/scene/scene.h"
+
+#include <ompl/base/Planner.h>
+#include <ompl/base/SpaceInformation.h>
 
 #include <optional>
 #include <string>
@@ -49,4 +53,7 @@ struct SceneSolveRun
 /// `solve`: plans all robots at once on the compound space and writes the path, every robot's
 /// pose on each line. Returns the exit status (2 when not solved).
 int runSceneSolve(const LoadedProblem &problem, const SceneSolveRun &run);
+/// makePlanner on a scene's space, its refusals (an unknown planner, one that needs OMPL's informed
+/// sets) naming the option: "--planner NAME: ...".
+ompl::base::PlannerPtr plannerForScene(const PlannerRequest &request, const ompl::base::SpaceInformationPtr &si);
 }  // namespace hcd::cli

@@ -3,6 +3,7 @@
 #include "command_line.h"
 #include "command_scene.h"
 #include "commands.h"
+#include "planner_watchdog.h"
 #include "problem_checks.h"
 #include "solve_progress.h"
 
@@ -88,7 +89,12 @@ int solveControl(const LoadedProblem &problem, std::shared_ptr<const CollisionCh
     planning.setup->setPlanner(makeControlPlanner(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
 
-    const ompl::base::PlannerStatus status = planning.setup->solve(run.timeLimit);
+    PlannerWatchdog watchdog(kNotSolved);
+    ompl::base::PlannerStatus status;
+    {
+        const WatchedRun watched(watchdog, planning.setup->getPlanner()->getName(), run.timeLimit);
+        status = planning.setup->solve(run.timeLimit);
+    }
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
     const double solveSeconds = planning.setup->getLastPlanComputationTime();
     const std::uint64_t checks = planning.poseValidity->checkCount();
@@ -259,7 +265,12 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     progressOptions.quiet = cl.has("quiet");
     progressOptions.terminal = ::isatty(STDERR_FILENO) == 1;
     SolveProgress progress(planning, std::cerr, progressOptions);
-    const ompl::base::PlannerStatus status = planning.setup->solve(progress.start());
+    PlannerWatchdog watchdog(kNotSolved);
+    ompl::base::PlannerStatus status;
+    {
+        const WatchedRun watched(watchdog, planning.setup->getPlanner()->getName(), timeLimit);
+        status = planning.setup->solve(progress.start());
+    }
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
     // OMPL keeps the path that ends nearest the goal when it finds no exact one.
     const bool approximate =

@@ -230,6 +230,28 @@ public:
     }
 };
 
+// The planners that draw samples from OMPL's informed sets (PathLengthDirectInfSampler). OMPL 1.5
+// makes those only for RealVector, SE(2) and SE(3) spaces and throws otherwise, from CForest's
+// worker threads too, where the throw ended the process.
+bool samplesInformedSets(const std::string &type)
+{
+    for (const char *name : {"abitstar", "aitstar", "bitstar", "cforest", "informedrrtstar", "sorrtstar"})
+        if (type == name)
+            return true;
+    return false;
+}
+
+// The spaces PathLengthDirectInfSampler accepts: SE(2), SE(3), or a space that is not compound and
+// either a real vector space or of unknown type (taken as one).
+bool informedSetsSupported(const ompl::base::StateSpace &space)
+{
+    const int type = space.getType();
+    if (type == ompl::base::STATE_SPACE_SE2 || type == ompl::base::STATE_SPACE_SE3)
+        return true;
+    return !space.isCompound() &&
+           (type == ompl::base::STATE_SPACE_REAL_VECTOR || type == ompl::base::STATE_SPACE_UNKNOWN);
+}
+
 // A std::map keeps the names sorted, so plannerNames() needs no extra sort.
 const std::map<std::string, Factory> &catalogue()
 {
@@ -450,6 +472,13 @@ ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::ba
         throw std::invalid_argument("unknown planner type '" + request.type +
                                     "'; valid types: " + join(plannerNames()));
 
+    if (samplesInformedSets(type) && !informedSetsSupported(*si->getStateSpace()))
+        throw std::invalid_argument("planner '" + type +
+                                    "' samples OMPL's informed sets, which OMPL 1.5 builds only for one robot in "
+                                    "SE(2) or SE(3) (or a real vector space); this problem's state space ('" +
+                                    si->getStateSpace()->getName() +
+                                    "', several bodies' poses) is neither: choose another planner (rrtconnect, "
+                                    "rrtstar, prm, kpiece, ...)");
     ompl::base::PlannerPtr planner = it->second(si, search);
     applyRequest(request, type, *planner);
     return planner;

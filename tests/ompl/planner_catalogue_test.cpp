@@ -4,6 +4,8 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/planners/informedtrees/BITstar.h>
 
+#include <ompl/base/spaces/SE2StateSpace.h>
+
 #include <gtest/gtest.h>
 
 using namespace hcd;
@@ -38,6 +40,40 @@ TEST(PlannerCatalogue, EveryNamedPlannerConstructs)
         const auto planner = makePlanner({n, "", {}}, si);
         ASSERT_TRUE(planner) << n;
     }
+}
+
+TEST(PlannerCatalogue, InformedSetPlannersAreRefusedWhereOmplCannotMakeTheirSets)
+{
+    // Two SE(2) poses in one compound space, as a scene of two robots plans: OMPL 1.5's informed
+    // sampler throws there (CForest's worker threads then ended the process).
+    auto compound = std::make_shared<ompl::base::CompoundStateSpace>();
+    for (int robot = 0; robot < 2; ++robot)
+    {
+        auto pose = std::make_shared<ompl::base::SE2StateSpace>();
+        ompl::base::RealVectorBounds bounds(2);
+        bounds.setLow(-1);
+        bounds.setHigh(1);
+        pose->setBounds(bounds);
+        compound->addSubspace(pose, 1.0);
+    }
+    auto scene = std::make_shared<ompl::base::SpaceInformation>(compound);
+    scene->setStateValidityChecker([](const ompl::base::State *) { return true; });
+    scene->setup();
+    for (const char *name : {"abitstar", "aitstar", "bitstar", "cforest", "informedrrtstar", "sorrtstar"})
+    {
+        try
+        {
+            makePlanner({name, "", {}}, scene);
+            ADD_FAILURE() << name << " made on a compound of poses";
+        }
+        catch (const std::invalid_argument &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("samples OMPL's informed sets"), std::string::npos) << e.what();
+        }
+        EXPECT_TRUE(makePlanner({name, "", {}}, se3())) << name;  // one robot: made as before
+    }
+    for (const char *name : {"rrtconnect", "rrtstar", "prm", "kpiece"})
+        EXPECT_TRUE(makePlanner({name, "", {}}, scene)) << name;
 }
 
 TEST(PlannerCatalogue, BitStarKeepsOnlyThreadSafeProgress)
