@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -123,15 +124,16 @@ double CommandLine::number(const std::string &key, double fallback) const
     if (!has(key))
         return fallback;
     const std::string &value = values_.at(key);
-    try
+    // Decimal numbers only (strtod would also read hexadecimal, "0x10" as 16), blanks around them
+    // allowed; strtod, not stod, which refuses subnormal numbers.
+    const std::size_t first = value.find_first_not_of(" \t"), last = value.find_last_not_of(" \t");
+    const std::string word = first == std::string::npos ? std::string() : value.substr(first, last - first + 1);
+    if (!word.empty() && word.find_first_not_of("0123456789+-.eE") == std::string::npos)
     {
-        std::size_t used = 0;
-        const double v = std::stod(value, &used);
-        if (used == value.size() && std::isfinite(v))
+        char *end = nullptr;
+        const double v = std::strtod(word.c_str(), &end);
+        if (end == word.c_str() + word.size() && std::isfinite(v))
             return v;
-    }
-    catch (const std::exception &)
-    {
     }
     throw UsageError("option --" + key + " needs a finite number, got '" + value + "'");
 }

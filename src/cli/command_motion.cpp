@@ -133,7 +133,10 @@ void declareClearance(CommandLine &cl)
         .option("states", "FILE", "the poses, one per line as in a .path file (required)");
     addCheckerOptions(cl, false);
     cl.footer(R"(
-Prints the distance to the environment per pose; colliding poses get minus a penetration estimate.
+Prints the distance to the environment per pose; colliding poses get minus a penetration estimate
+(the deepest penetration among intersecting triangle pairs), and 0 when the robot is contained in
+a closed obstacle (or holds one) without a surface crossing, as touching poses do: 'check' or
+'contacts' tell them apart.
 For a scene problem: the smallest distance over the checked pairs (0 when touching) per line of poses.
 Examples:
   hybridcd clearance problems/window_3d.cfg --states poses.path

@@ -26,8 +26,8 @@ void PlannerWatchdog::arm(const std::string &name, double timeLimit)
         name_ = name;
         timeLimit_ = timeLimit;
         const double seconds = timeLimit + graceSeconds(timeLimit);
-        deadline_ = std::chrono::steady_clock::now() +
-                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+        deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                           std::chrono::duration<double>(seconds));
     }
     changed_.notify_all();
 }

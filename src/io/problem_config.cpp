@@ -47,12 +47,14 @@ public:
 
     double number(const std::string &key, const Entry &e) const
     {
-        // strtod, not stod: stod refuses subnormal numbers (it throws on ERANGE).
+        // strtod, not stod: stod refuses subnormal numbers (it throws on ERANGE). Decimal numbers
+        // only: strtod would also read hexadecimal ("0x1" as 1).
         const char *begin = e.value.c_str();
         char *end = nullptr;
         const double v = std::strtod(begin, &end);
+        const std::string number = trim(std::string(begin, std::size_t(end - begin)));
         if (end != begin && trim(std::string(end, e.value.size() - std::size_t(end - begin))).empty() &&
-            std::isfinite(v))
+            std::isfinite(v) && number.find_first_not_of("0123456789+-.eE") == std::string::npos)
             return v;
         throw InputError(path_, e.line, "'" + key + "' needs a finite number, got '" + e.value + "'");
     }
