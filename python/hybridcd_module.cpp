@@ -173,6 +173,8 @@ public:
             std::optional<double> approximateTolerance, double contactTolerance)
         : scene_(std::move(scene))
     {
+        if (!scene_)
+            throw py::type_error("Checker needs a Scene or a Problem, got None");
         if (!(contactTolerance > 0.0 && contactTolerance <= 1.0))
             throw py::value_error("contact_tolerance must be a fraction of the motion in (0, 1], got " +
                                   py::repr(py::float_(contactTolerance)).cast<std::string>());
@@ -290,8 +292,18 @@ private:
 
 std::shared_ptr<Problem> loadProblemFile(const std::string &path)
 {
+    // A name with a zero byte would be cut short there by the file system's calls.
+    if (path.find('\0') != std::string::npos)
+        throw py::value_error("cfg_path holds a zero byte");
     auto problem = std::make_shared<Problem>();
     problem->data = std::make_shared<const LoadedProblem>(loadProblem(path));
+    // A Checker checks one robot against the environment mesh; a scene's other robots and its
+    // primitive obstacles would be left out, and its answers wrong.
+    if (problem->data->config.isScene())
+        throw InputError(path, 0,
+                         "a scene problem (several robots or primitive obstacles) is not read by the Python "
+                         "module, whose checkers test one robot against the environment mesh: use the command "
+                         "line (hybridcd check, check-motion, clearance, solve)");
     return problem;
 }
 

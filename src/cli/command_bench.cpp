@@ -264,7 +264,7 @@ int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<
     PlannerWatchdog watchdog(kBadInput);
     benchmark.setPreRunEvent([&](const ompl::base::PlannerPtr &planner) {
         install(slotOf.at(planner.get()));
-        watchdog.arm(planner->getName(), run.timeLimit);
+        watchdog.arm(planner->getName(), run.timeLimit, PlannerWatchdog::benchmarkGraceSeconds(run.timeLimit));
     });
     benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
         watchdog.disarm();
@@ -489,7 +489,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
         CheckerSlot &slot = slots[slotOf.at(planner.get())];
         slot.validity = install(slot);
         slot.validity->resetCounters();
-        watchdog.arm(planner->getName(), timeLimit);
+        watchdog.arm(planner->getName(), timeLimit, PlannerWatchdog::benchmarkGraceSeconds(timeLimit));
     });
     benchmark.setPostRunEvent([&](const ompl::base::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &run) {
         watchdog.disarm();

@@ -85,6 +85,12 @@ int runContacts(const CommandLine &cl, const CheckerCatalogue &checkers)
     const CheckerOptions options = checkerOptionsOf(cl);
     const std::string checkerName = checkerNamesOf(cl, checkers, options).front();
     const LoadedProblem problem = loadProblemFor(cl);
+    // Contacts are robot 1's triangle pairs with the environment mesh: on a scene the other robots
+    // and the primitive obstacles would be left out, and a colliding pose listed without contacts.
+    if (problem.config.isScene())
+        throw InputError(problem.config.path, 0,
+                         "contacts lists one robot's triangle pairs with the environment mesh, and this is a "
+                         "scene problem (several robots or primitive obstacles): use check or clearance");
     const std::vector<PoseRecord> poses = readPoses(cl.text("states", ""), problem.config.planar);
     const auto checker = checkers.make(checkerName, problem.scene, options);
     std::ostringstream out;

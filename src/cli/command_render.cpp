@@ -15,6 +15,7 @@
 #include "hybridcd/scene/scene_mesh.h"
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -173,8 +174,20 @@ int runRender(const CommandLine &cl, const CheckerCatalogue &checkers)
         }
     }
     const std::string out = cl.text("out", ""), gltf = cl.text("gltf", "");
-    if (!out.empty() && out == gltf)
-        throw UsageError("options --out and --gltf name the same file '" + out + "'");
+    for (const auto &[option, name] : {std::pair<const char *, const std::string &>{"out", out}, {"gltf", gltf}})
+        if (cl.has(option) && name.empty())
+            checkOutputPath(name, std::string("--") + option, {});  // refuses the empty name
+    if (!out.empty() && !gltf.empty())
+    {
+        // The same file however written ("r/a" and "./r/a", or two links to one file).
+        std::error_code outError, gltfError, linkError;
+        const std::filesystem::path outPath = std::filesystem::weakly_canonical(out, outError),
+                                    gltfPath = std::filesystem::weakly_canonical(gltf, gltfError);
+        const bool same = out == gltf || (!outError && !gltfError && outPath == gltfPath) ||
+                          std::filesystem::equivalent(out, gltf, linkError);
+        if (same)
+            throw UsageError("options --out and --gltf name the same file ('" + out + "', '" + gltf + "')");
+    }
 
     const LoadedProblem problem = loadProblemFor(cl);
     const ProblemConfig &cfg = problem.config;

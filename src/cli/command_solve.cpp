@@ -69,6 +69,9 @@ std::pair<unsigned, unsigned> parseControlSteps(const std::string &text)
     return {lo, hi};
 }
 
+// The longest propagation step taken (seconds; the message below names it).
+constexpr double kMaxPropagationStep = 10.0;
+
 struct ControlRun
 {
     double timeLimit;
@@ -136,8 +139,12 @@ int solveControl(const LoadedProblem &problem, std::shared_ptr<const CollisionCh
         row.push_back(i < path.getControlCount() ? path.getControlDuration(i) : 0.0);
         rows.push_back(std::move(row));
     }
+    // The state's values as written (copyToReals): a quaternion counts four, where the space's
+    // dimension counts three.
+    std::vector<double> stateValues;
+    space->copyToReals(stateValues, path.getState(0));
     AtomicFile out(run.outPath);
-    out.stream() << "# " << vehicleModelName(planning.model) << " path: " << space->getDimension()
+    out.stream() << "# " << vehicleModelName(planning.model) << " path: " << stateValues.size()
                  << " state values (the pose first, as in OMPL.app's .path), " << controlDims
                  << " control values, duration in s\n";
     writePoses(out.stream(), rows);
@@ -164,7 +171,7 @@ void declareSolve(CommandLine &cl)
                 "nearest neighbours of rrtconnect, rrt, prm, prmstar (default poses: a k-d tree over the poses, the "
                 "same neighbours as ompl's default GNAT, found with fewer distances)")
         .option("goal-threshold", "D", "kinodynamic problems: distance to the goal state that counts (default 1)")
-        .option("propagation-step", "SECONDS", "kinodynamic problems: the propagation step (default 0.2)")
+        .option("propagation-step", "SECONDS", "kinodynamic problems: the propagation step, at most 10 (default 0.2)")
         .option("control-steps", "MIN,MAX", "kinodynamic problems: steps each control lasts (default 1,20)")
         .flag("verbose", "OMPL's progress messages")
         .flag("quiet", "no progress on stderr (default: a line a second, or a bar on a terminal)");
@@ -209,6 +216,11 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     controlSettings.motion = motion;
     controlSettings.goalThreshold = cl.positiveNumber("goal-threshold", controlSettings.goalThreshold);
     controlSettings.propagationStep = cl.positiveNumber("propagation-step", controlSettings.propagationStep);
+    // Each step is integrated finely and a control lasts up to --control-steps of them: a step of
+    // hours would keep one propagation running past any time limit. OMPL.app's vehicles use 0.1-0.2 s.
+    if (controlSettings.propagationStep > kMaxPropagationStep)
+        throw UsageError("option --propagation-step needs at most 10 seconds, got '" + cl.text("propagation-step", "") +
+                         "'");
     if (cl.has("control-steps"))
         std::tie(controlSettings.minControlSteps, controlSettings.maxControlSteps) =
             parseControlSteps(cl.text("control-steps", ""));

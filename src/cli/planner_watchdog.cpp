@@ -19,13 +19,16 @@ PlannerWatchdog::~PlannerWatchdog()
     thread_.join();
 }
 
-void PlannerWatchdog::arm(const std::string &name, double timeLimit)
+void PlannerWatchdog::arm(const std::string &name, double timeLimit) { arm(name, timeLimit, graceSeconds(timeLimit)); }
+
+void PlannerWatchdog::arm(const std::string &name, double timeLimit, double grace)
 {
     {
         const std::lock_guard<std::mutex> lock(mutex_);
         name_ = name;
         timeLimit_ = timeLimit;
-        const double seconds = timeLimit + graceSeconds(timeLimit);
+        grace_ = grace;
+        const double seconds = timeLimit + grace;
         deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                            std::chrono::duration<double>(seconds));
     }
@@ -57,7 +60,7 @@ void PlannerWatchdog::watch()
             continue;
         // One write, so that the line is not interleaved with the planner's progress output.
         std::ostringstream message;
-        message << "hybridcd: error: planner " << name_ << " did not return within " << graceSeconds(timeLimit_)
+        message << "hybridcd: error: planner " << name_ << " did not return within " << grace_
                 << " s after its limit of --time " << timeLimit_
                 << " s (it samples in a loop that ignores the limit); nothing was written\n";
         std::fputs(message.str().c_str(), stderr);

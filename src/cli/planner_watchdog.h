@@ -26,15 +26,19 @@ public:
     PlannerWatchdog &operator=(const PlannerWatchdog &) = delete;
 
     /// Watches planner `name`, given `timeLimit` seconds: if it is still planning after the limit
-    /// and graceSeconds(timeLimit) more, the process prints why on stderr and ends. Replaces any
-    /// watch armed before.
+    /// and `grace` seconds more (graceSeconds(timeLimit) unless given), the process prints why on
+    /// stderr and ends. Replaces any watch armed before.
     void arm(const std::string &name, double timeLimit);
+    void arm(const std::string &name, double timeLimit, double grace);
     /// The planner returned.
     void disarm();
 
     /// How long past its limit a planner may run: 2 s and half the limit (OMPL's planners return
-    /// within milliseconds of it; PRM joins its roadmap thread, a benchmark run saves its data).
+    /// within milliseconds of it; PRM joins its roadmap thread).
     static double graceSeconds(double timeLimit) { return 2.0 + 0.5 * timeLimit; }
+    /// The same for a benchmark run, which also simplifies its path within the watch (OMPL's
+    /// Benchmark, without a limit of its own): 30 s and the limit.
+    static double benchmarkGraceSeconds(double timeLimit) { return 30.0 + timeLimit; }
 
 private:
     void watch();
@@ -45,6 +49,7 @@ private:
     std::optional<std::chrono::steady_clock::time_point> deadline_;
     std::string name_;
     double timeLimit_ = 0.0;
+    double grace_ = 0.0;
     bool stopping_ = false;
     std::thread thread_;
 };

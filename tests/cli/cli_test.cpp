@@ -52,6 +52,34 @@ TEST(Cli, SolveWritesAValidPath)
     EXPECT_NEAR(poses.back().values[0], problem.config.goal.x, 1e-9);
 }
 
+namespace
+{
+// The first row of a kinodynamic path file whose header starts with `header`, checked to hold as
+// many values as the header announces (states, controls and the duration).
+std::vector<double> firstRowMatchingItsHeader(const std::string &path, const std::string &header)
+{
+    std::ifstream in(path);
+    std::string first, row;
+    std::getline(in, first);
+    EXPECT_EQ(first.rfind(header, 0), 0u) << first;
+    unsigned states = 0, controls = 0;
+    EXPECT_EQ(std::sscanf(first.c_str() + first.find(": ") + 2,
+                          "%u state values (the pose first, as in OMPL.app's "
+                          ".path), %u control values",
+                          &states, &controls),
+              2)
+        << first;
+    std::getline(in, row);
+    std::istringstream columns(row);
+    double v = 0.0;
+    std::vector<double> values;
+    while (columns >> v)
+        values.push_back(v);
+    EXPECT_EQ(values.size(), std::size_t(states + controls + 1)) << first << "\n" << row;
+    return values;
+}
+}  // namespace
+
 TEST(Cli, SolveRunsAControlPlannerOnAKinodynamicProblem)
 {
     const std::string cfg = test::sourcePath("problems/corridor_kcar.cfg");
@@ -72,19 +100,51 @@ TEST(Cli, SolveRunsAControlPlannerOnAKinodynamicProblem)
     EXPECT_LT(
         std::hypot(poses.back().values[0] - problem.config.goal.x, poses.back().values[1] - problem.config.goal.y),
         1.0);
-    std::ifstream in(out);
-    std::string header, row;
-    std::getline(in, header);
-    EXPECT_EQ(header.rfind("# kinematic_car path:", 0), 0u) << header;
-    std::getline(in, row);
-    std::istringstream columns(row);
-    double v = 0.0;
-    std::vector<double> values;
-    while (columns >> v)
-        values.push_back(v);
-    ASSERT_EQ(values.size(), 6u) << row;
+    const std::vector<double> values = firstRowMatchingItsHeader(out, "# kinematic_car path: 3 state values");
+    ASSERT_EQ(values.size(), 6u);
     EXPECT_LE(std::abs(values[3]), 5.0);
     EXPECT_NEAR(std::fmod(values[5] + 1e-9, 0.2), 0.0, 1e-6) << "a whole number of propagation steps";
+}
+
+TEST(Cli, AQuadrotorPathHeaderCountsTheValuesWritten)
+{
+    // x y z, the quaternion's four values, six velocities: 13 values, where the space's dimension
+    // is 12 (the header once said 12, and columns read by it took the controls wrongly).
+    // problems/quadrotor_window.cfg with its goal half a metre from the start, on the start's side
+    // of the window: solved at once.
+    std::ifstream window(test::sourcePath("problems/quadrotor_window.cfg"));
+    std::string text, line;
+    while (std::getline(window, line))
+    {
+        if (line.rfind("goal.x", 0) == 0)
+            line = "goal.x = -1.5";
+        else if (line.rfind("robot = ", 0) == 0 || line.rfind("world = ", 0) == 0)
+            line = line.substr(0, 8) + test::sourcePath("problems/" + line.substr(8));
+        text += line + "\n";
+    }
+    const std::string cfg = test::writeTempFile("quadrotor_near.cfg", text);
+    const std::string out = test::writeTempFile("quadrotor.path", "");
+    const CliRun r = run("solve " + cfg + " --planner kpiece --seed 1 --time 60 --out " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::vector<double> values = firstRowMatchingItsHeader(out, "# quadrotor path: 13 state values");
+    ASSERT_EQ(values.size(), 13u + 4u + 1u);
+}
+
+// OMPL 1.5's SORRT* never returns once it holds a shortest possible path (here a free straight
+// motion from start to goal): a benchmark run is ended 30 s and its limit past it, with no log
+// written (solve's shorter grace is in the hostile-input corpus).
+TEST(Cli, BenchEndsARunThatIgnoresItsTimeLimit)
+{
+    const std::string log = test::writeTempFile("never.log", "");
+    std::remove(log.c_str());
+    const CliRun r = run("bench " + test::sourcePath("tests/hostile/straight_2d.cfg") +
+                         " --planner sorrtstar --runs 1 --time 0.2 --baseline none --out " + log);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("planner SORRTstar[auto+continuous] did not return within 30.2 s after its limit of "
+                            "--time 0.2 s"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(std::ifstream(log).good()) << "a log was written";
 }
 
 TEST(Cli, KinodynamicProblemsRefuseWhatCannotBeDone)

@@ -227,6 +227,16 @@ class Contracts(unittest.TestCase):
         with self.assertRaises(hybridcd.InputError):
             hybridcd.Scene.from_meshes("/nonexistent/robot.obj", self.problem.environment_mesh)
 
+    def test_scenes_and_missing_scenes_are_refused(self):
+        # A scene's other robots and primitive obstacles are not the environment mesh a Checker
+        # tests: its answers would be wrong, so it is refused by name.
+        with self.assertRaisesRegex(hybridcd.InputError, r"crossing_2d\.cfg: a scene problem .* use the command line"):
+            hybridcd.Problem.load(str(SOURCE_DIR / "problems" / "crossing_2d.cfg"))
+        with self.assertRaisesRegex(TypeError, "Checker needs a Scene or a Problem, got None"):
+            hybridcd.Checker(None)
+        with self.assertRaisesRegex(ValueError, "zero byte"):
+            hybridcd.Problem.load(str(SOURCE_DIR / "problems" / "window_3d.cfg") + "\x00junk")
+
     def test_batches_run_without_the_gil(self):
         # While one thread checks a long batch, another must keep running Python.
         poses = np.tile(random_poses(np.random.default_rng(SEED), self.problem, 500), (1, 1))
