@@ -281,6 +281,7 @@ int benchScene(const CommandLine &cl, const LoadedProblem &problem, std::vector<
     });
     ompl::tools::Benchmark::Request request(run.timeLimit, run.memoryLimit, run.shardRuns, 0.05, false, false, true);
     benchmark.benchmark(request);
+    watchdog.disarm();  // OMPL skips the post-run event of a run whose results it could not store
     std::cerr << '\n';
     AtomicFile log(run.out);
     if (!benchmark.saveResultsToStream(log.stream()))
@@ -507,6 +508,7 @@ int runBench(const CommandLine &cl, const CheckerCatalogue &checkers)
 
     ompl::tools::Benchmark::Request request(timeLimit, memoryLimit, shardRuns, 0.05, false, false, true);
     benchmark.benchmark(request);
+    watchdog.disarm();  // OMPL skips the post-run event of a run whose results it could not store
     std::cerr << '\n';
 
     AtomicFile log(out);

@@ -42,7 +42,8 @@ std::string solidSummary(const TriangleMesh &mesh)
                 list += (list.empty() ? "" : ", ") + std::string("#") + std::to_string(i) + " (" +
                         std::to_string(components[i].triangles.size()) + " triangles)";
         }
-    s << components.size() << " connected, " << closed << " closed (solids)";
+    // Connected parts, with closed shells that touch only at vertices or shared edges apart.
+    s << components.size() << " connected, " << closed << " closed (solids; touching shells apart)";
     if (closed > 0)
         s << ": " << list << (closed > 12 ? ", ..." : "");
     return s.str();

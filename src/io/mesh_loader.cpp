@@ -299,6 +299,10 @@ std::optional<std::string_view> attributeValue(std::string_view attributes, std:
     return std::nullopt;
 }
 
+// Whether text data starts with a UTF-8 byte order mark, which assimp 5.2's OBJ reader takes for
+// part of the first statement (a first vertex was lost and every face index after it shifted).
+bool startsWithByteOrderMark(std::string_view data) { return data.substr(0, 3) == "\xEF\xBB\xBF"; }
+
 // The first `l` (line) statement of OBJ data that assimp 5.2's OBJ reader could read with fewer
 // than two vertices, as its line number and why (line 0 when there is none). The reader counts
 // such a statement as no segment yet stores its vertex, so the mesh's vertex array is one vertex
@@ -314,6 +318,8 @@ std::optional<std::string_view> attributeValue(std::string_view attributes, std:
 // (a digit, or '-' and a digit): the reader then takes a vertex from each or fails cleanly.
 std::pair<int, std::string> objLineStatementProblem(std::string_view data)
 {
+    if (startsWithByteOrderMark(data))  // removed before import, so the first line is read as a statement
+        data.remove_prefix(3);
     const auto lineEnd = [](char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; };
     const auto digit = [](char c) { return c >= '0' && c <= '9'; };
     int line = 1;
@@ -366,10 +372,6 @@ std::pair<int, std::string> objLineStatementProblem(std::string_view data)
     }
     return {0, {}};
 }
-
-// Whether text data starts with a UTF-8 byte order mark, which assimp 5.2's OBJ reader takes for
-// part of the first statement (a first vertex was lost and every face index after it shifted).
-bool startsWithByteOrderMark(std::string_view data) { return data.substr(0, 3) == "\xEF\xBB\xBF"; }
 
 // Calls visit(line, text) for each line of OBJ data, from line 1, with `text` its content without
 // the line end (\n, \r\n or a lone \r, as the reader's lines end) and after a byte order mark,
@@ -450,16 +452,37 @@ std::pair<int, std::string> objStatementProblem(std::string_view data)
             return false;
         }
         ++vertices;
-        if (const std::size_t hash = text.find('#'); hash != std::string_view::npos)
-            text = text.substr(0, hash);
         if (continuedOnNextLine(text))
             return true;
+        // The reader counts the coordinates as the words that start with a digit, '+' or '-' (or
+        // spell nan or inf), comments included, and reads that many from the start: the numbers
+        // must come first, decimal and finite, and only a comment may follow them.
         int numbers = 0;
-        const bool finite = forEachWord(text, 1, [&](std::string_view w) {
+        bool comment = false;
+        forEachWord(text, 1, [&](std::string_view w) {
             const std::string word(w);
+            const char c = word[0];
+            const bool counted = (c >= '0' && c <= '9') || c == '+' || c == '-' ||
+                                 lowercase(word.substr(0, 3)) == "nan" || lowercase(word.substr(0, 3)) == "inf";
+            if (!counted)
+            {
+                comment = comment || c == '#';
+                if (comment)
+                    return true;
+                problem = {line, "its vertex statement ('v') holds '" + word.substr(0, 20) +
+                                     "', which the OBJ reader does not read as a number"};
+                return false;
+            }
+            if (comment)
+            {
+                problem = {line, "its vertex statement ('v') has a number in its comment, which the OBJ reader "
+                                 "counts as a coordinate"};
+                return false;
+            }
             char *parsed = nullptr;
             const double value = std::strtod(word.c_str(), &parsed);
-            if (parsed != word.c_str() + word.size() || !std::isfinite(value))
+            if (parsed != word.c_str() + word.size() || !std::isfinite(value) ||
+                word.find_first_not_of("0123456789+-.eE") != std::string::npos)
             {
                 problem = {line, "its vertex statement ('v') holds '" + word.substr(0, 20) + "', not a finite number"};
                 return false;
@@ -467,7 +490,7 @@ std::pair<int, std::string> objStatementProblem(std::string_view data)
             ++numbers;
             return true;
         });
-        if (finite && numbers != 3 && numbers != 4 && numbers != 6)
+        if (problem.second.empty() && numbers != 3 && numbers != 4 && numbers != 6)
             problem = {line, "its vertex statement ('v') holds " + std::to_string(numbers) +
                                  " numbers; the OBJ reader takes 3 (x y z), 4 (x y z w) or 6 (x y z r g b)"};
         return problem.second.empty();
@@ -1409,6 +1432,13 @@ std::pair<int, std::string> offFaceProblem(std::string_view data)
 //   objLineStatementProblem): the reader then writes past the end of its vertex array. Checked
 //   whenever the OBJ reader may get the data: an "obj" extension or hint, or one no reader claims
 //   (assimp then picks a reader by content).
+// Whether assimp may give data of format `kind` (lowercase) to its OBJ reader: an "obj" extension or
+// hint, or one no reader claims (assimp then picks a reader by content).
+bool objReaderMayRead(const std::string &kind, const Assimp::Importer &importer)
+{
+    return kind == "obj" || !importer.IsExtensionSupported(kind.c_str());
+}
+
 void rejectBeforeImport(std::string_view data, const std::string &format, const std::string &name,
                         const Assimp::Importer &importer)
 {
@@ -1417,7 +1447,7 @@ void rejectBeforeImport(std::string_view data, const std::string &format, const 
     // of the checks below would see (a .zae holding a COLLADA instance cycle overflowed the stack).
     if (kind == "zae" || data.substr(0, 4) == std::string_view("PK\x03\x04", 4))
         throw InputError(name, 0, "a zip archive (.zae and the like) is not read: unpack the mesh file it holds");
-    if (kind == "obj" || !importer.IsExtensionSupported(kind.c_str()))
+    if (objReaderMayRead(kind, importer))
     {
         if (const auto [line, problem] = objLineStatementProblem(data); !problem.empty())
             throw InputError(name, line, "malformed OBJ file: " + problem);
@@ -1681,9 +1711,9 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
     const std::string content = readInputFile(path, "mesh file", maxBytes);
     const std::string extension = extensionOf(path);
     rejectBeforeImport(content, extension, path, *importer.importer_);
-    // An OBJ file with a byte order mark is read from these bytes without it (its .mtl library is
-    // then not read: it holds no geometry).
-    if (lowercase(extension) == "obj" && startsWithByteOrderMark(content))
+    // A file the OBJ reader may read, with a byte order mark, is read from these bytes without it
+    // (an OBJ's .mtl library is then not read: it holds no geometry).
+    if (objReaderMayRead(lowercase(extension), *importer.importer_) && startsWithByteOrderMark(content))
         return loadFrom(*importer.importer_, Source{path, true, std::string_view(content).substr(3), &extension}, role,
                         limits);
     // assimp then reads the file again by path, not these bytes: a mesh's own references (an OBJ's
@@ -1699,7 +1729,7 @@ LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, con
         throw InputError(sourceName, 0, "mesh data is empty");
     rejectAboveByteLimit(data.size(), "data", sourceName, limits);
     rejectBeforeImport(data, formatHint, sourceName, *importer.importer_);
-    if (lowercase(formatHint) == "obj" && startsWithByteOrderMark(data))
+    if (objReaderMayRead(lowercase(formatHint), *importer.importer_) && startsWithByteOrderMark(data))
         data.remove_prefix(3);  // as loadMesh: the OBJ reader takes the mark for part of a statement
     return loadFrom(*importer.importer_, Source{sourceName, true, data, &formatHint}, role, limits);
 }

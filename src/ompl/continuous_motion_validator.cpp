@@ -500,8 +500,9 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         // Elsewhere (and for a free verdict) every interval covers the turn as the verdict does.
         const bool translated = rates->startRotationHeld && contactAt <= 1.0 && iv.b < 1.0;
         const double radialSlack = translated ? 0.0 : angleRate * half + rates->endTurn;
-        // How far the farthest robot point may come, all slack counted.
-        const double needed = translationRate * half + robotRadius_ * radialSlack;
+        // How far the farthest robot point moves over half the interval: the verdict's measure of
+        // a near contact (the end turn left out), so that both give up on the same intervals.
+        const double needed = translationRate * half + (translated ? 0.0 : robotRadius_ * angleRate * half);
         const RigidTransform pose = poses.at(mid);
         if (++queries > (contactAt <= 1.0 ? kMaxRefinementQueries : kMaxQueries))
         {
