@@ -176,12 +176,7 @@ int runSceneSolve(const LoadedProblem &problem, const SceneSolveRun &run)
     PlannerRequest request{run.plannerName, "", run.params};
     planning.setup->setPlanner(plannerForScene(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
-    PlannerWatchdog watchdog(kNotSolved);
-    ompl::base::PlannerStatus status;
-    {
-        const WatchedRun watched(watchdog, planning.setup->getPlanner()->getName(), run.timeLimit);
-        status = planning.setup->solve(run.timeLimit);
-    }
+    const ompl::base::PlannerStatus status = solveWatched(*planning.setup, run.timeLimit, run.timeLimit, kNotSolved);
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
     const bool approximate =
         status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION && planning.setup->haveSolutionPath();

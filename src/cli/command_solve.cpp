@@ -92,12 +92,7 @@ int solveControl(const LoadedProblem &problem, std::shared_ptr<const CollisionCh
     planning.setup->setPlanner(makeControlPlanner(request, planning.setup->getSpaceInformation()));
     planning.setup->setup();
 
-    PlannerWatchdog watchdog(kNotSolved);
-    ompl::base::PlannerStatus status;
-    {
-        const WatchedRun watched(watchdog, planning.setup->getPlanner()->getName(), run.timeLimit);
-        status = planning.setup->solve(run.timeLimit);
-    }
+    const ompl::base::PlannerStatus status = solveWatched(*planning.setup, run.timeLimit, run.timeLimit, kNotSolved);
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
     const double solveSeconds = planning.setup->getLastPlanComputationTime();
     const std::uint64_t checks = planning.poseValidity->checkCount();
@@ -277,12 +272,7 @@ int runSolve(const CommandLine &cl, const CheckerCatalogue &checkers)
     progressOptions.quiet = cl.has("quiet");
     progressOptions.terminal = ::isatty(STDERR_FILENO) == 1;
     SolveProgress progress(planning, std::cerr, progressOptions);
-    PlannerWatchdog watchdog(kNotSolved);
-    ompl::base::PlannerStatus status;
-    {
-        const WatchedRun watched(watchdog, planning.setup->getPlanner()->getName(), timeLimit);
-        status = planning.setup->solve(progress.start());
-    }
+    const ompl::base::PlannerStatus status = solveWatched(*planning.setup, progress.start(), timeLimit, kNotSolved);
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
     // OMPL keeps the path that ends nearest the goal when it finds no exact one.
     const bool approximate =

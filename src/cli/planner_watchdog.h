@@ -69,4 +69,14 @@ public:
 private:
     PlannerWatchdog &watchdog_;
 };
+
+/// setup.solve(termination) (OMPL's SimpleSetup, geometric or control) under a watch of
+/// `timeLimit` seconds that ends the process with `exitStatus` if its planner overruns.
+template <class Setup, class Termination>
+auto solveWatched(Setup &setup, const Termination &termination, double timeLimit, int exitStatus)
+{
+    PlannerWatchdog watchdog(exitStatus);
+    const WatchedRun run(watchdog, setup.getPlanner()->getName(), timeLimit);
+    return setup.solve(termination);
+}
 }  // namespace hcd::cli

@@ -299,8 +299,7 @@ std::optional<std::string_view> attributeValue(std::string_view attributes, std:
     return std::nullopt;
 }
 
-// Whether text data starts with a UTF-8 byte order mark, which assimp 5.2's OBJ reader takes for
-// part of the first statement (a first vertex was lost and every face index after it shifted).
+// Whether text data starts with a UTF-8 byte order mark.
 bool startsWithByteOrderMark(std::string_view data) { return data.substr(0, 3) == "\xEF\xBB\xBF"; }
 
 // The first `l` (line) statement of OBJ data that assimp 5.2's OBJ reader could read with fewer
@@ -318,8 +317,6 @@ bool startsWithByteOrderMark(std::string_view data) { return data.substr(0, 3) =
 // (a digit, or '-' and a digit): the reader then takes a vertex from each or fails cleanly.
 std::pair<int, std::string> objLineStatementProblem(std::string_view data)
 {
-    if (startsWithByteOrderMark(data))  // removed before import, so the first line is read as a statement
-        data.remove_prefix(3);
     const auto lineEnd = [](char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; };
     const auto digit = [](char c) { return c >= '0' && c <= '9'; };
     int line = 1;
@@ -374,13 +371,10 @@ std::pair<int, std::string> objLineStatementProblem(std::string_view data)
 }
 
 // Calls visit(line, text) for each line of OBJ data, from line 1, with `text` its content without
-// the line end (\n, \r\n or a lone \r, as the reader's lines end) and after a byte order mark,
-// until visit returns false.
+// the line end (\n, \r\n or a lone \r, as the reader's lines end), until visit returns false.
 template <class Visit>
 void forEachObjLine(std::string_view data, Visit &&visit)
 {
-    if (startsWithByteOrderMark(data))
-        data.remove_prefix(3);
     int line = 0;
     for (std::size_t start = 0; start < data.size();)
     {
@@ -1416,6 +1410,24 @@ std::pair<int, std::string> offFaceProblem(std::string_view data)
     return {0, {}};
 }
 
+// Whether assimp may give data of format `kind` (lowercase) to its OBJ reader: an "obj" extension or
+// hint, or one no reader claims (assimp then picks a reader by content).
+bool objReaderMayRead(const std::string &kind, const Assimp::Importer &importer)
+{
+    return kind == "obj" || !importer.IsExtensionSupported(kind.c_str());
+}
+
+// The bytes assimp's reader is given: without a UTF-8 byte order mark where the OBJ reader may
+// read them (it takes the mark for part of the first statement: a first vertex was lost and every
+// face index after it shifted), so that the checks before import see what the reader will.
+std::string_view withoutObjByteOrderMark(std::string_view data, const std::string &format,
+                                         const Assimp::Importer &importer)
+{
+    if (startsWithByteOrderMark(data) && objReaderMayRead(lowercase(format), importer))
+        data.remove_prefix(3);
+    return data;
+}
+
 // Refuses, before assimp sees them, data that assimp 5.2's readers cannot survive (each found by
 // fuzzing; `format` is the file's extension or the buffer's hint):
 // - PLY data without an "end_header" line, or with a header that is not printable text (see
@@ -1432,13 +1444,6 @@ std::pair<int, std::string> offFaceProblem(std::string_view data)
 //   objLineStatementProblem): the reader then writes past the end of its vertex array. Checked
 //   whenever the OBJ reader may get the data: an "obj" extension or hint, or one no reader claims
 //   (assimp then picks a reader by content).
-// Whether assimp may give data of format `kind` (lowercase) to its OBJ reader: an "obj" extension or
-// hint, or one no reader claims (assimp then picks a reader by content).
-bool objReaderMayRead(const std::string &kind, const Assimp::Importer &importer)
-{
-    return kind == "obj" || !importer.IsExtensionSupported(kind.c_str());
-}
-
 void rejectBeforeImport(std::string_view data, const std::string &format, const std::string &name,
                         const Assimp::Importer &importer)
 {
@@ -1710,12 +1715,12 @@ LoadedMesh loadMesh(MeshImporter &importer, const std::string &path, MeshRole ro
     const std::uintmax_t maxBytes = std::uintmax_t(limits.maxTriangles) * limits.bytesPerTriangle;
     const std::string content = readInputFile(path, "mesh file", maxBytes);
     const std::string extension = extensionOf(path);
-    rejectBeforeImport(content, extension, path, *importer.importer_);
-    // A file the OBJ reader may read, with a byte order mark, is read from these bytes without it
-    // (an OBJ's .mtl library is then not read: it holds no geometry).
-    if (objReaderMayRead(lowercase(extension), *importer.importer_) && startsWithByteOrderMark(content))
-        return loadFrom(*importer.importer_, Source{path, true, std::string_view(content).substr(3), &extension}, role,
-                        limits);
+    const std::string_view data = withoutObjByteOrderMark(content, extension, *importer.importer_);
+    rejectBeforeImport(data, extension, path, *importer.importer_);
+    // A file whose byte order mark was left out is read from these bytes (an OBJ's .mtl library is
+    // then not read: it holds no geometry).
+    if (data.size() != content.size())
+        return loadFrom(*importer.importer_, Source{path, true, data, &extension}, role, limits);
     // assimp then reads the file again by path, not these bytes: a mesh's own references (an OBJ's
     // .mtl library, a COLLADA file's external parts) resolve only beside the file.
     return loadFrom(*importer.importer_, Source{path, false, {}, nullptr}, role, limits);
@@ -1728,9 +1733,8 @@ LoadedMesh loadMeshFromMemory(MeshImporter &importer, std::string_view data, con
     if (data.empty())
         throw InputError(sourceName, 0, "mesh data is empty");
     rejectAboveByteLimit(data.size(), "data", sourceName, limits);
+    data = withoutObjByteOrderMark(data, formatHint, *importer.importer_);
     rejectBeforeImport(data, formatHint, sourceName, *importer.importer_);
-    if (objReaderMayRead(lowercase(formatHint), *importer.importer_) && startsWithByteOrderMark(data))
-        data.remove_prefix(3);  // as loadMesh: the OBJ reader takes the mark for part of a statement
     return loadFrom(*importer.importer_, Source{sourceName, true, data, &formatHint}, role, limits);
 }
 
