@@ -138,7 +138,7 @@ TEST(Cli, BenchEndsARunThatIgnoresItsTimeLimit)
     const std::string log = test::writeTempFile("never.log", "");
     std::remove(log.c_str());
     const CliRun r = run("bench " + test::sourcePath("tests/hostile/straight_2d.cfg") +
-                         " --planner sorrtstar --runs 1 --time 0.2 --baseline none --out " + log);
+                         " --planner sorrtstar --runs 1 --time 0.2 --seed 3 --baseline none --out " + log);
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_NE(r.output.find("planner SORRTstar[auto+continuous] did not return within 30.2 s after its limit of "
                             "--time 0.2 s"),
