@@ -481,6 +481,13 @@ std::pair<int, std::string> objStatementProblem(std::string_view data)
                 problem = {line, "its vertex statement ('v') holds '" + word.substr(0, 20) + "', not a finite number"};
                 return false;
             }
+            if (std::fabs(value) > double(std::numeric_limits<float>::max()))
+            {
+                // The reader keeps single precision: it would read infinity.
+                problem = {line, "its vertex statement ('v') holds '" + word.substr(0, 20) +
+                                     "', beyond the OBJ reader's single precision (at most about 3.4e38)"};
+                return false;
+            }
             ++numbers;
             return true;
         });

@@ -53,6 +53,8 @@ std::vector<PoseRecord> parseRows(std::string_view text, const std::string &path
                 throw InputError(path, lineNo, quotedWord(word) + " is not a number");
             if (!std::isfinite(v))
                 throw InputError(path, lineNo, quotedWord(word) + " is not a finite number");
+            if (std::fabs(v) > kLargestInputMagnitude)
+                throw InputError(path, lineNo, quotedWord(word) + " is beyond magnitude 1e100");
             row.values.push_back(v);
         }
         if (row.values.empty())

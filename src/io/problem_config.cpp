@@ -55,7 +55,12 @@ public:
         const std::string number = trim(std::string(begin, std::size_t(end - begin)));
         if (end != begin && trim(std::string(end, e.value.size() - std::size_t(end - begin))).empty() &&
             std::isfinite(v) && number.find_first_not_of("0123456789+-.eE") == std::string::npos)
+        {
+            if (std::fabs(v) > kLargestInputMagnitude)
+                throw InputError(path_, e.line,
+                                 "'" + key + "' needs a number of magnitude at most 1e100, got '" + e.value + "'");
             return v;
+        }
         throw InputError(path_, e.line, "'" + key + "' needs a finite number, got '" + e.value + "'");
     }
 
@@ -503,11 +508,8 @@ ProblemConfig parseProblemConfig(std::string_view text, const std::string &path)
         const double a = parser.number("volume.min." + axis, *lo), b = parser.number("volume.max." + axis, *hi);
         if (a > b)
             throw InputError(path, lo->line, "volume.min." + axis + " exceeds volume.max." + axis);
-        // OMPL samples in and measures the volume by its width: an infinite one gives no state.
-        if (!std::isfinite(b - a))
-            throw InputError(path, lo->line,
-                             "volume." + axis + " is too wide: volume.max." + axis + " - volume.min." + axis +
-                                 " overflows to infinity");
+        // OMPL samples in and measures the volume by its width, finite since both ends are within
+        // kLargestInputMagnitude.
         return std::make_pair(a, b);
     };
     cfg.volumeX = readRange("x");

@@ -155,8 +155,9 @@ TEST(PathFile, SubnormalNumbersAreNumbers)
 
 TEST(PathFile, WrittenPosesReadBackBitForBit)
 {
-    const std::vector<std::vector<double>> poses = {{-0.0, 4.9406564584124654e-324, 1.7976931348623157e308},
-                                                    {0.1, 1.0 / 3.0, -2.5e-300}};
+    // Down to the smallest subnormal, and up to the largest magnitude a file may hold (1e100).
+    const std::vector<std::vector<double>> poses = {
+        {-0.0, 4.9406564584124654e-324, 1e100}, {0.1, 1.0 / 3.0, -2.5e-300}, {-1e100, 9.999999999999999e99, -0.0}};
     std::ostringstream out;
     writePoses(out, poses);
     const auto back = parsePoses(out.str(), "written.path", true);
@@ -167,6 +168,26 @@ TEST(PathFile, WrittenPosesReadBackBitForBit)
             EXPECT_EQ(back[i].values[k], poses[i][k]);
             EXPECT_EQ(std::signbit(back[i].values[k]), std::signbit(poses[i][k]));
         }
+}
+
+// Beyond magnitude 1e100 squared distances overflow: a file's number there is refused with its line.
+TEST(PathFile, NumbersBeyondMagnitude1e100AreRefusedWithTheirLine)
+{
+    for (const char *far : {"1.0000000000000002e100", "-1e101", "1.7976931348623157e308"})
+    {
+        const std::string text = std::string("0 0 0\n# far\n0 ") + far + " 0\n";
+        try
+        {
+            (void)parsePoses(text, "far.path", true);
+            ADD_FAILURE() << far << " was read";
+        }
+        catch (const InputError &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("far.path:3: '" + std::string(far) + "' is beyond magnitude 1e100"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 // Reading normalises a quaternion that is off unit length; reading what was written must not

@@ -10,6 +10,10 @@
 
 namespace hcd
 {
+/// The largest magnitude a number read from a problem, pose or path file may have: the squares of
+/// distances between points that far out still fit in a double (shapes take the same bound).
+constexpr double kLargestInputMagnitude = 1e100;
+
 /// `text` with every control byte (below 0x20, and 0x7f) and every byte that is not part of valid
 /// UTF-8 written as \xNN, for quoting file content or a command-line word in a message: a NUL would
 /// cut the message short, an escape sequence would reach the terminal. With `keepNewlines`, line
