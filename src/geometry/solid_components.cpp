@@ -381,14 +381,16 @@ namespace
 {
 using FaceList = std::vector<std::pair<Triangle, std::uint32_t>>;
 
-// The shells of a closed component's distinct faces (sorted by key): faces joined across every
-// edge that exactly two of them share. Two closed surfaces that meet only at vertices, or at edges
-// that more than two faces share (a cube with a tetrahedron inside touching one of its corners),
-// come apart; each holds a solid, and parity over their union would count a point inside both as
-// outside. Returns the shells when every one of them is closed, else none (the component then
-// stays one solid, decided by parity as before).
-std::vector<FaceList> closedShells(const FaceList &faces)
+// Whether a component's distinct faces (sorted by key) close (every edge used by an even number of
+// them, as everyEdgeUsedEvenly), and if so its shells, into `shells`: faces joined across every edge
+// that exactly two of them share. Two closed surfaces that meet only at vertices, or at edges that
+// more than two faces share (a cube with a tetrahedron inside touching one of its corners), come
+// apart; each holds a solid, and parity over their union would count a point inside both as
+// outside. `shells` gets the shells when every one of them is closed, else none (the component
+// then stays one solid, decided by parity as before). One sort of the edges serves both.
+bool closedShells(const FaceList &faces, std::vector<FaceList> &shells)
 {
+    shells.clear();
     struct EdgeUse
     {
         std::uint32_t a, b, face;
@@ -403,22 +405,26 @@ std::vector<FaceList> closedShells(const FaceList &faces)
         uses.push_back({t[1], t[2], f});
         uses.push_back({t[0], t[2], f});
     }
+    if (uses.empty())
+        return false;
     std::sort(uses.begin(), uses.end());
-    UnionFind shells(faces.size());
+    UnionFind joined(faces.size());
     for (std::size_t i = 0; i < uses.size();)
     {
         std::size_t j = i;
         while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b)
             ++j;
+        if ((j - i) % 2 != 0)
+            return false;  // open
         if (j - i == 2)
-            shells.unite(uses[i].face, uses[i + 1].face);
+            joined.unite(uses[i].face, uses[i + 1].face);
         i = j;
     }
     std::vector<std::int64_t> shellOfRoot(faces.size(), -1);
     std::vector<FaceList> out;
     for (std::uint32_t f = 0; f < faces.size(); ++f)
     {
-        std::int64_t &slot = shellOfRoot[shells.find(f)];
+        std::int64_t &slot = shellOfRoot[joined.find(f)];
         if (slot < 0)
         {
             slot = std::int64_t(out.size());
@@ -427,9 +433,9 @@ std::vector<FaceList> closedShells(const FaceList &faces)
         out[std::size_t(slot)].push_back(faces[f]);  // still sorted by key
     }
     if (out.size() > 1 &&
-        !std::all_of(out.begin(), out.end(), [](const FaceList &shell) { return everyEdgeEven(shell); }))
-        return {};
-    return out;
+        std::all_of(out.begin(), out.end(), [](const FaceList &shell) { return everyEdgeEven(shell); }))
+        shells = std::move(out);
+    return true;
 }
 
 // The components of `mesh` given its canonical vertices; `closedFaces`, if given, receives the
@@ -464,10 +470,8 @@ std::vector<MeshComponent> componentsOf(const TriangleMesh &mesh, const std::vec
     for (MeshComponent &component : components)
     {
         FaceList faces = distinctFaces(mesh, canonical, component.triangles);
-        component.closed = everyEdgeEven(faces);
         std::vector<FaceList> shells;
-        if (component.closed)
-            shells = closedShells(faces);
+        component.closed = closedShells(faces, shells);
         if (shells.size() <= 1)
         {
             splitFaces.push_back(component.closed ? std::move(faces) : FaceList());
