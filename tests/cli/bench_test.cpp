@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -124,6 +125,63 @@ TEST(Bench, AnytimeSummaryTakesTheFirstPathAndTheFinalCost)
 std::string configurationsOf(const std::string &log)
 {
     return shell("awk '/^[0-9]+ planners$/{n=$1; next} n>0 && /^geometric_/{printf \"%s;\", $0; n--}' " + log).output;
+}
+
+// bench/summarize_speed.py on tables worked out by hand: the ratios against FCL and OMPL.app's
+// set-up per problem, the medians over problems, and each target's line.
+TEST(Bench, SpeedSummaryTakesRatiosFromTheTablesOfOneRun)
+{
+    const std::string dir = tempDir() + "/speed";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const auto write = [&](const std::string &name, const std::string &text) {
+        std::ofstream(dir + "/" + name) << text;
+    };
+    write("states.md",
+          "| problem | checker | median ns/check | mean ns/check | median vs fcl |\n|---|---|---:|---:|---:|\n"
+          "| a | auto | 100 | 200 | 0.1 |\n| a | fcl | 1500 | 1000 | 1.00 |\n"
+          "| b | auto | 100 | 100 | 0.5 |\n| b | fcl | 200 | 300 | 1.00 |\n"
+          "| c | auto | 10 | 100 | 0.1 |\n| c | fcl | 120 | 150 | 1.00 |\n");
+    write("distance.md", "| problem | checker | median ns/distance | mean ns/distance |\n|---|---|---:|---:|\n"
+                         "| a | auto | 10 | 10 |\n| a | fcl | 200 | 100 |\n");
+    write("scaling.md",
+          "| environment triangles | robot triangles | checker | build ms | memory MiB | median ns/check | vs "
+          "fcl |\n|---:|---:|---|---:|---:|---:|---:|\n"
+          "| 1000 | 10 | auto | 2.0 | 1.0 | 100 | 0.1 |\n| 1000 | 10 | fcl | 1.0 | 2.0 | 1000 | 1.00 |\n"
+          "| 1000000 | 10 | auto | 50.0 | 1.0 | 150 | 0.1 |\n| 1000000 | 10 | fcl | 100.0 | 2.0 | 2000 | 1.00 "
+          "|\n");
+    write("motions.md",
+          "| problem | validator | state checker | median us/motion | vs discrete+fcl | mean us/motion | vs "
+          "discrete+fcl | accepted | accepted but touching |\n|---|---|---|---:|---:|---:|---:|---:|---:|\n"
+          "| a | continuous | obb | 1.0 | 0.1 | 2.0 | 0.1 | 9 | - |\n"
+          "| a | continuous, lastValid | obb | 1.5 | 0.15 | 5.0 | 0.25 | 9 | - |\n"
+          "| a | discrete | fcl | 10.0 | 1.00 | 20.0 | 1.00 | 9 | - |\n");
+    write(
+        "touching.md",
+        "| problem | validator | state checker | median us/motion | accepted but touching |\n|---|---|---|---:|---:|\n"
+        "| a | continuous | obb | 1.0 | 0 |\n| a | discrete | fcl | 10.0 | 2 |\n");
+    write("planning.md",
+          "| problem | planner[configuration] | runs | solved | median solve s | vs OMPL.app | median checks | "
+          "median check s |\n|---|---|---:|---:|---:|---:|---:|---:|\n"
+          "| a | RRTConnect[auto+continuous] | 10 | 90% | 0.1 | 0.10 | 1 | 0.1 |\n"
+          "| a | RRTConnect[fcl+discrete(0.01)] | 10 | 100% | 1.0 | 1.00 | 1 | 0.9 |\n");
+    const Output summary = shell("python3 " + hcd::test::sourcePath("bench/summarize_speed.py") + " " + dir);
+    ASSERT_EQ(summary.status, 0) << summary.output;
+    for (const char *expected :
+         {"| a | 100 | 1500 | 15.0x | 200 | 1000 | 5.0x |", "| b | 100 | 200 | 2.0x | 100 | 300 | 3.0x |",
+          // Speed-ups 15, 2 and 12: the median 12, the least 2 (b), under 3.
+          "**12.0x at the median over the 3 problems**, at least 2.0x (b). Target: at least 10x at the median over "
+          "them and 3x on every one: not met.",
+          "**20.0x at the median over the 1 problems**, at least 20.0x (a). Target: at least 10x on every one: "
+          "**met**.",
+          // 100 -> 150 ns (1.5x) against log(1e6) / log(1e3) = 2; builds 2x FCL's at 1,000 triangles.
+          "grows 1.50x from 1000 to 1000000 triangles, against log(triangles)'s 2.00x: **met**. Build time and memory "
+          "at or below FCL's at 1 of 2 sizes (1000000 triangles): not met.",
+          "| a | 1.0 | 10.0 | 0.10 | 0.10 | 2.50 | 0 / 2 |",
+          "lastValid at most twice the verdict (mean): not met (over on a).",
+          "RRTConnect, certified motions against OMPL.app's set-up, median solve time: a 0.10x (9/10 against 10/10). "
+          "Target: solved at least as often everywhere and at most 0.2x on every one: not met (fewer solved on a)."})
+        EXPECT_NE(summary.output.find(expected), std::string::npos) << expected << "\n" << summary.output;
 }
 
 TEST(Bench, ConfigurationsAreCheckerTimesMotionPlusTheOmplAppBaseline)
