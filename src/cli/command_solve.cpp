@@ -94,6 +94,9 @@ int solveControl(const LoadedProblem &problem, std::shared_ptr<const CollisionCh
 
     const ompl::base::PlannerStatus status = solveWatched(*planning.setup, run.timeLimit, run.timeLimit, kNotSolved);
     const bool solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
+    // As for geometric planners: the path OMPL keeps nearest the goal is written, labelled.
+    const bool approximate =
+        status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION && planning.setup->haveSolutionPath();
     const double solveSeconds = planning.setup->getLastPlanComputationTime();
     const std::uint64_t checks = planning.poseValidity->checkCount();
     const double checkSeconds = planning.poseValidity->checkSeconds();
@@ -108,11 +111,15 @@ int solveControl(const LoadedProblem &problem, std::shared_ptr<const CollisionCh
               << "propagation step: " << run.settings.propagationStep << " s, controls of "
               << run.settings.minControlSteps << " to " << run.settings.maxControlSteps << " steps\n"
               << "goal threshold: " << run.settings.goalThreshold << '\n'
-              << "solved: " << (solved ? "yes" : "no") << " (" << status.asString() << ")\n"
+              << "solved: "
+              << (solved        ? "yes"
+                  : approximate ? "no, approximate path only"
+                                : "no")
+              << " (" << status.asString() << ")\n"
               << "solve time: " << solveSeconds << " s\n"
               << "collision checks: " << checks << '\n'
               << "collision checking time: " << checkSeconds << " s\n";
-    if (!solved)
+    if (!solved && !approximate)
         return kNotSolved;
 
     ompl::control::PathControl &path = planning.setup->getSolutionPath();
@@ -144,9 +151,18 @@ int solveControl(const LoadedProblem &problem, std::shared_ptr<const CollisionCh
                  << " control values, duration in s\n";
     writePoses(out.stream(), rows);
     out.commit();
-    std::cout << "states written (one per propagation step): " << rows.size() << '\n'
-              << "path written to: " << run.outPath << '\n';
-    return kSuccess;
+    std::cout << "states written (one per propagation step): " << rows.size() << '\n';
+    if (!approximate)
+    {
+        std::cout << "path written to: " << run.outPath << '\n';
+        return kSuccess;
+    }
+    const double goalDistance = planning.setup->getProblemDefinition()->getSolutionDifference();
+    std::cout << "approximate path: ends " << goalDistance << " from the goal (OMPL's goal distance)\n"
+              << "APPROXIMATE path written to: " << run.outPath << '\n';
+    std::cerr << "hybridcd: warning: no exact solution in " << run.timeLimit << " s; " << run.outPath
+              << " holds an APPROXIMATE path, which ends " << goalDistance << " from the goal (exit status 2)\n";
+    return kNotSolved;
 }
 }  // namespace
 

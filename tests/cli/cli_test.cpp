@@ -17,6 +17,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -104,6 +105,28 @@ TEST(Cli, SolveRunsAControlPlannerOnAKinodynamicProblem)
     ASSERT_EQ(values.size(), 6u);
     EXPECT_LE(std::abs(values[3]), 5.0);
     EXPECT_NEAR(std::fmod(values[5] + 1e-9, 0.2), 0.0, 1e-6) << "a whole number of propagation steps";
+}
+
+// A control planner that reaches no exact solution writes the path OMPL keeps nearest the goal,
+// labelled, as geometric planners do (exit status 2): a goal threshold of 1e-9 is never met.
+TEST(Cli, AControlPlannerWritesItsApproximatePathLabelled)
+{
+    const std::string cfg = test::sourcePath("problems/corridor_kcar.cfg");
+    const std::string out = test::writeTempFile("kcar_approximate.path", "");
+    std::filesystem::remove(out);
+    const CliRun r = run("solve " + cfg + " --planner rrt --seed 1 --time 0.3 --goal-threshold 1e-9 --out " + out);
+    ASSERT_EQ(r.status, 2) << r.output;
+    for (const char *field : {"solved: no, approximate path only", "APPROXIMATE path written to: ",
+                              "from the goal (OMPL's goal distance)", "holds an APPROXIMATE path"})
+        EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
+    const LoadedProblem problem = loadProblem(cfg);
+    const auto poses = readPoses(out, true);
+    ASSERT_GE(poses.size(), 2u);
+    EXPECT_NEAR(poses.front().values[0], problem.config.start.x, 1e-9);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const PoseRecord &p : poses)
+        EXPECT_FALSE(reference->collides(transformOfRow(p.values.data(), true)));
+    EXPECT_EQ(firstRowMatchingItsHeader(out, "# kinematic_car path: 3 state values").size(), 6u);
 }
 
 TEST(Cli, AQuadrotorPathHeaderCountsTheValuesWritten)
