@@ -472,15 +472,24 @@ ompl::base::PlannerPtr makePlanner(const PlannerRequest &request, const ompl::ba
         throw std::invalid_argument("unknown planner type '" + request.type +
                                     "'; valid types: " + join(plannerNames()));
 
-    if (samplesInformedSets(type) && !informedSetsSupported(*si->getStateSpace()))
-        throw std::invalid_argument("planner '" + type +
-                                    "' samples OMPL's informed sets, which OMPL 1.5 builds only for one robot in "
-                                    "SE(2) or SE(3) (or a real vector space); this problem's state space ('" +
-                                    si->getStateSpace()->getName() +
-                                    "', several bodies' poses) is neither: choose another planner (rrtconnect, "
-                                    "rrtstar, prm, kpiece, ...)");
+    const bool informedSets = informedSetsSupported(*si->getStateSpace());
+    const auto refuse = [&](const std::string &what) {
+        return std::invalid_argument(what +
+                                     " samples OMPL's informed sets, which OMPL 1.5 builds only for one robot in "
+                                     "SE(2) or SE(3) (or a real vector space); this problem's state space ('" +
+                                     si->getStateSpace()->getName() +
+                                     "', several bodies' poses) is neither: choose another planner (rrtconnect, "
+                                     "rrtstar, prm, kpiece, ...)");
+    };
+    if (samplesInformedSets(type) && !informedSets)
+        throw refuse("planner '" + type + "'");
     ompl::base::PlannerPtr planner = it->second(si, search);
     applyRequest(request, type, *planner);
+    // RRT* and RRTX sample (or reject samples by) the informed set when these are set.
+    if (!informedSets)
+        for (const char *key : {"informed_sampling", "sample_rejection"})
+            if (planner->params().hasParam(key) && planner->params()[key].getValue() == "1")
+                throw refuse("planner '" + type + "' with " + key + "=1");
     return planner;
 }
 

@@ -74,6 +74,24 @@ TEST(PlannerCatalogue, InformedSetPlannersAreRefusedWhereOmplCannotMakeTheirSets
     }
     for (const char *name : {"rrtconnect", "rrtstar", "prm", "kpiece"})
         EXPECT_TRUE(makePlanner({name, "", {}}, scene)) << name;
+    // RRT* and RRTX with informed sampling or sample rejection sample the informed set too.
+    for (const char *name : {"rrtstar", "rrtxstatic"})
+        for (const char *key : {"informed_sampling", "sample_rejection"})
+        {
+            try
+            {
+                makePlanner({name, "", {{key, "1"}}}, scene);
+                ADD_FAILURE() << name << " with " << key << "=1 made on a compound of poses";
+            }
+            catch (const std::invalid_argument &e)
+            {
+                EXPECT_NE(std::string(e.what()).find(std::string(key) + "=1 samples OMPL's informed sets"),
+                          std::string::npos)
+                    << e.what();
+            }
+            EXPECT_TRUE(makePlanner({name, "", {{key, "0"}}}, scene)) << name << " " << key << "=0";
+            EXPECT_TRUE(makePlanner({name, "", {{key, "1"}}}, se3())) << name << " " << key << "=1, one robot";
+        }
 }
 
 TEST(PlannerCatalogue, BitStarKeepsOnlyThreadSafeProgress)
