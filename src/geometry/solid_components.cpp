@@ -87,6 +87,45 @@ std::vector<std::pair<Triangle, std::uint32_t>> distinctFaces(const TriangleMesh
     return faces;
 }
 
+// The distinct faces of `triangles` whose reverse (the same corners in the other order) is not
+// among them, with their keys, sorted by key: repeats in the same orientation count once.
+std::vector<std::pair<Triangle, std::uint32_t>> unpairedFaces(const TriangleMesh &mesh,
+                                                              const std::vector<std::uint32_t> &canonical,
+                                                              const std::vector<std::uint32_t> &triangles)
+{
+    struct OrientedFace
+    {
+        Triangle key;
+        bool even;  // the corners in an even permutation of the key's order
+        std::uint32_t triangle;
+    };
+    std::vector<OrientedFace> faces;
+    faces.reserve(triangles.size());
+    for (std::uint32_t t : triangles)
+    {
+        const std::uint32_t a = canonical[mesh.triangles[t][0]], b = canonical[mesh.triangles[t][1]],
+                            c = canonical[mesh.triangles[t][2]];
+        // Rotated to start at the least corner, the order is even when the other two ascend.
+        const bool even = a < b && a < c ? b < c : b < a && b < c ? c < a : a < b;
+        faces.push_back({faceKey(mesh.triangles[t], canonical), even, t});
+    }
+    std::sort(faces.begin(), faces.end(), [](const OrientedFace &x, const OrientedFace &y) {
+        return x.key != y.key ? x.key < y.key : x.even != y.even ? x.even < y.even : x.triangle < y.triangle;
+    });
+    std::vector<std::pair<Triangle, std::uint32_t>> out;
+    for (std::size_t i = 0; i < faces.size();)
+    {
+        std::size_t j = i;
+        bool bothOrientations = false;
+        for (; j < faces.size() && faces[j].key == faces[i].key; ++j)
+            bothOrientations = bothOrientations || faces[j].even != faces[i].even;
+        if (!bothOrientations)
+            out.emplace_back(faces[i].key, faces[i].triangle);
+        i = j;
+    }
+    return out;
+}
+
 bool everyEdgeEven(const std::vector<std::pair<Triangle, std::uint32_t>> &faces)
 {
     std::vector<Triangle> sorted;
@@ -472,6 +511,21 @@ std::vector<MeshComponent> componentsOf(const TriangleMesh &mesh, const std::vec
         FaceList faces = distinctFaces(mesh, canonical, component.triangles);
         std::vector<FaceList> shells;
         component.closed = closedShells(faces, shells);
+        if (!component.closed)
+        {
+            // Solids that share a face (two boxes side by side, each closed) hold it twice, once in
+            // each orientation. Taken as one double-sided face (as OMPL.app's meshes store every
+            // face twice), it leaves the component open. Counted twice, as the two solids' own, it
+            // cancels in parity: the faces without their reverse then bound the union of the
+            // solids. So when those close, they are the component's solid; the paired faces are
+            // surfaces within it (an open double-sided sheet has no unpaired face at all).
+            FaceList unpaired = unpairedFaces(mesh, canonical, component.triangles);
+            if (unpaired.size() < faces.size() && everyEdgeEven(unpaired))
+            {
+                faces = std::move(unpaired);
+                component.closed = true;  // one solid, by parity over the unpaired faces
+            }
+        }
         if (shells.size() <= 1)
         {
             splitFaces.push_back(component.closed ? std::move(faces) : FaceList());

@@ -61,8 +61,10 @@ GridFirstChecker::GridFirstChecker(std::unique_ptr<CollisionChecker> exact, cons
         // The solid wrapper's indexes when the exact checker is one (as the catalogue makes it):
         // the same solids, found once.
         auto *wrapper = dynamic_cast<SolidSemanticsChecker *>(exact_.get());
-        const SolidQuery environmentSolids = wrapper ? wrapper->environmentSolids() : SolidQuery(environment.mesh);
-        robotSolids = wrapper ? wrapper->robotSolids() : SolidQuery(robot.mesh);
+        // Solids come from the source meshes, as the wrapper's do: a face repeated in reverse may
+        // be shared by two solids (meshComponents()).
+        const SolidQuery environmentSolids = wrapper ? wrapper->environmentSolids() : SolidQuery(scene.environment);
+        robotSolids = wrapper ? wrapper->robotSolids() : SolidQuery(scene.robot);
         robotHasSolids_ = robotSolids->closedComponentCount() > 0;
         environmentHasSolids_ = environmentSolids.closedComponentCount() > 0;
         if (robotHasSolids_)

@@ -401,6 +401,54 @@ TEST(SolidQuery, ShellsMeetingAtACornerOrAnEdgeEachHoldASolid)
     expectMatchesReference("two open boxes closing together", glued, inBox(lo, hi), specials, -1, 5, kPoints / 4, 32);
 }
 
+// Two closed boxes side by side hold their shared face twice, once in each orientation (found by
+// a held-out input). Taken as one double-sided face it left the pair open, and a robot inside
+// either box was free; the faces without a reverse close, and bound the union of the two.
+TEST(SolidQuery, SolidsSharingAFaceHoldTheirUnion)
+{
+    const Vec3 lo(0, 0, 0), hi(4, 4, 4);
+    const std::vector<double> specials = {-1, 0, 0.5, 1, 2, 3, 4, 5};
+    const TriangleMesh a = test::boxMesh(lo, Vec3(2, 4, 4)), b = test::boxMesh(Vec3(2, 0, 0), hi);
+    TriangleMesh pair = merged(a, b);
+    weldAndDropDegenerate(pair);  // as the loader does
+    ASSERT_EQ(withoutRepeatedFaces(std::make_shared<TriangleMesh>(pair)).dropped, 2u) << "the shared face, reversed";
+    auto components = meshComponents(pair);
+    ASSERT_EQ(components.size(), 1u);
+    EXPECT_TRUE(components[0].closed);
+    const SolidQuery query(std::make_shared<TriangleMesh>(pair));
+    EXPECT_TRUE(query.insideAnySolid(Vec3(1, 1, 1)));
+    EXPECT_TRUE(query.insideAnySolid(Vec3(3, 1, 1)));
+    EXPECT_TRUE(query.insideAnySolid(Vec3(2, 1, 1)));  // on the shared face
+    expectMatchesReference("two boxes sharing a face", pair, inBox(lo, hi), specials, -1, 5, kPoints / 2, 41);
+
+    // A closed box with a double-sided fin along one of its edges: the box is the solid, the fin a
+    // surface (points beside it are outside).
+    TriangleMesh finned = test::boxMesh(lo, hi);
+    const auto corner = [&](const Vec3 &p) {
+        finned.vertices.push_back(p);
+        return std::uint32_t(finned.vertices.size() - 1);
+    };
+    const std::uint32_t f0 = corner(Vec3(4, 0, 0)), f1 = corner(Vec3(4, 0, 4)), f2 = corner(Vec3(8, 0, 4)),
+                        f3 = corner(Vec3(8, 0, 0));
+    finned.triangles.push_back({f0, f1, f2});
+    finned.triangles.push_back({f0, f2, f3});
+    finned.triangles.push_back({f2, f1, f0});
+    finned.triangles.push_back({f3, f2, f0});
+    components = meshComponents(finned);
+    ASSERT_EQ(components.size(), 1u);
+    EXPECT_TRUE(components[0].closed);
+    expectMatchesReference("a box with a double-sided fin", finned, inBox(lo, hi), specials, -1, 9, kPoints / 2, 42);
+
+    // An open double-sided sheet alone has no face without its reverse: a surface, not a solid.
+    TriangleMesh sheet;
+    sheet.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+    sheet.triangles = {{0, 1, 2}, {0, 2, 3}, {2, 1, 0}, {3, 2, 0}};
+    components = meshComponents(sheet);
+    ASSERT_EQ(components.size(), 1u);
+    EXPECT_FALSE(components[0].closed);
+    EXPECT_EQ(SolidQuery(std::make_shared<TriangleMesh>(sheet)).closedComponentCount(), 0u);
+}
+
 TEST(SolidQuery, TetrahedronAgainstAnalyticReference)
 {
     const std::vector<double> specials = {-1, -0.5, 0, 0.5, 1, 1.5, 2, 2.5, 3, 4, 4.5};

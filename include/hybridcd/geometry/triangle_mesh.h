@@ -73,8 +73,8 @@ std::size_t weldAndDropDegenerate(TriangleMesh &mesh);
 
 /// A mesh as the query structures use it: every triangle that repeats an earlier one's corner
 /// indices, in the same or another order, removed (SketchUp exports every face twice, once
-/// reversed). The point set is unchanged, and so is closedness (isClosed() and meshComponents()
-/// ignore such repeats), so collision and distance answers are the same as on the source mesh.
+/// reversed). The point set is unchanged, so collision and distance answers are the same as on
+/// the source mesh; solids come from the source mesh (meshComponents()).
 struct DistinctFaceMesh
 {
     /// The source mesh itself when no face repeats; otherwise a copy without the repeats, with the
