@@ -232,8 +232,7 @@ public:
                     continue;
                 }
                 const RigidTransform pose = transformOfRow(poses[i].data(), planar());
-                const double d = checker_->distance(pose, context);
-                out[i] = d > 0.0 ? d : -estimatePenetration(*checker_, scene, pose, context, 0).depth;
+                out[i] = signedClearance(*checker_, scene, pose, context).value;
             }
         }
         return toArray(out);

@@ -136,7 +136,7 @@ void declareClearance(CommandLine &cl)
 Prints the distance to the environment per pose; colliding poses get minus a penetration estimate
 (the deepest penetration among intersecting triangle pairs), and 0 when the robot is contained in
 a closed obstacle (or holds one) without a surface crossing, as touching poses do: 'check' or
-'contacts' tell them apart.
+'contacts' tell them apart. A free pose whose distance rounds to 0 prints 0 and counts as free.
 For a scene problem: the smallest distance over the checked pairs (0 when touching) per line of poses.
 Examples:
   hybridcd clearance problems/window_3d.cfg --states poses.path
@@ -165,10 +165,9 @@ int runClearance(const CommandLine &cl, const CheckerCatalogue &checkers)
     for (const PoseRecord &p : poses)
     {
         const RigidTransform pose = transformOfRow(p.values.data(), problem.config.planar);
-        const double d = checker->distance(pose, context);
-        free += d > 0.0 ? 1 : 0;
-        // 0.0 - depth, not -depth: a pose within rounding of contact (depth 0) prints 0, not -0.
-        out << (d > 0.0 ? d : 0.0 - estimatePenetration(*checker, problem.scene, pose, context, 0).depth) << '\n';
+        const SignedClearance clearance = signedClearance(*checker, problem.scene, pose, context);
+        free += clearance.colliding ? 0 : 1;
+        out << clearance.value << '\n';
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << out.str();

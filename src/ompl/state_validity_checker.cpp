@@ -66,16 +66,18 @@ double StateValidityChecker::clearance(const ompl::base::State *state) const
 {
     const RigidTransform pose = poseOfState(state, planar_);
     const QueryContextPool::Lease context = contexts_.borrow();
-    const double d = timed([&] { return checker_->distance(pose, *context); });
-    if (d > 0.0)
-        return d;
-    return -estimatePenetration(*checker_, scene_, pose, *context, 0).depth;
+    return timed([&] { return signedClearance(*checker_, scene_, pose, *context).value; });
 }
 
 bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist) const
 {
-    dist = clearance(state);
-    return si_->satisfiesBounds(state) && dist > 0.0;
+    const RigidTransform pose = poseOfState(state, planar_);
+    const QueryContextPool::Lease context = contexts_.borrow();
+    const SignedClearance clearance = timed([&] { return signedClearance(*checker_, scene_, pose, *context); });
+    dist = clearance.value;
+    // The collision check decides, as isValid(state) does: a free pose may have a distance that
+    // rounds to 0.
+    return si_->satisfiesBounds(state) && !clearance.colliding;
 }
 
 bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist, ompl::base::State *validState,

@@ -112,4 +112,16 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
     QueryContext context;
     return estimatePenetration(checker, scene, worldFromRobot, context, maxSteps);
 }
+
+SignedClearance signedClearance(const CollisionChecker &checker, const CollisionScene &scene,
+                                const RigidTransform &worldFromRobot, QueryContext &context)
+{
+    const double d = checker.distance(worldFromRobot, context);
+    if (d > 0.0)
+        return {d, false};
+    if (!checker.collides(worldFromRobot, context))
+        return {0.0, false};
+    // 0.0 - depth, not -depth: a pose within rounding of contact (depth 0) gives 0, not -0.
+    return {0.0 - estimatePenetration(checker, scene, worldFromRobot, context, 0).depth, true};
+}
 }  // namespace hcd

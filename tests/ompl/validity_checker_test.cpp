@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "support/test_support.h"
 
+#include "hybridcd/io/path_file.h"
 #include "hybridcd/ompl/planning_problem.h"
 #include "hybridcd/query/checker_catalogue.h"
 
@@ -8,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <thread>
 
 using namespace hcd;
@@ -69,4 +71,33 @@ TEST(ValidityChecker, BoundsAreAppliedAndPosesFollowOmplAppConventions)
     ASSERT_EQ(values.size(), 7u);
     EXPECT_EQ(values[0], 1e6);
     EXPECT_EQ(values[6], s->rotation().w);
+}
+
+// A free pose a rounding step from contact (found by a held-out probe): its distance rounds to 0.
+// The clearance is then +0, and isValid with a distance agrees with isValid without one: the
+// collision check decides.
+TEST(ValidityChecker, AFreePoseWhoseDistanceRoundsToZeroIsValidWithClearanceZero)
+{
+    const LoadedProblem problem = loadProblem(test::sourcePath("tests/hostile/free_zero.cfg"));
+    const std::vector<PoseRecord> poses = readPoses(test::sourcePath("tests/hostile/free_zero.path"), false);
+    ASSERT_EQ(poses.size(), 1u);
+    for (const char *name : {"bruteforce", "obb", "auto"})
+    {
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker(name, problem.scene));
+        planning.setup->setup();
+        ompl::base::ScopedState<ompl::base::SE3StateSpace> s(planning.setup->getStateSpace());
+        s->setXYZ(poses[0].values[0], poses[0].values[1], poses[0].values[2]);
+        s->rotation().x = poses[0].values[3];
+        s->rotation().y = poses[0].values[4];
+        s->rotation().z = poses[0].values[5];
+        s->rotation().w = poses[0].values[6];
+        EXPECT_TRUE(planning.validity->collisionFree(s.get())) << name;
+        const double clearance = planning.validity->clearance(s.get());
+        EXPECT_EQ(clearance, 0.0) << name;
+        EXPECT_FALSE(std::signbit(clearance)) << name;
+        double dist = -1.0;
+        EXPECT_TRUE(planning.validity->isValid(s.get())) << name;
+        EXPECT_TRUE(planning.validity->isValid(s.get(), dist)) << name;
+        EXPECT_EQ(dist, 0.0) << name;
+    }
 }

@@ -35,4 +35,16 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
 /// The same with a fresh context (allocates; for one-off queries).
 PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const CollisionScene &scene,
                                         const RigidTransform &worldFromRobot, int maxSteps = 20);
+
+/// A pose's clearance as every clearance query reports it: for a free pose the exact distance (+0
+/// when it rounds to zero, the robot a rounding step from contact), for a colliding one minus the
+/// penetration estimate (0 when only contained). `colliding` is the collision check's own answer,
+/// asked only when the distance is 0.
+struct SignedClearance
+{
+    double value = 0.0;  ///< world units
+    bool colliding = false;
+};
+SignedClearance signedClearance(const CollisionChecker &checker, const CollisionScene &scene,
+                                const RigidTransform &worldFromRobot, QueryContext &context);
 }  // namespace hcd
