@@ -454,7 +454,7 @@ TEST(SceneConfig, ErrorsNameTheLine)
     expectError(head + "obstacle.1 = sphere -1\n", 7, "positive");
     expectError(head + "obstacle.1 = halfspace 0 0 0 1\n", 7, "non-zero normal");
     // Dimensions whose squares would overflow or underflow.
-    expectError(head + "obstacle.1 = capsule 1e308 1e308\n", 7, "magnitude 1e-100 to 1e100");
+    expectError(head + "obstacle.1 = capsule 1e308 1e308\n", 7, "magnitude at most 1e100, got '1e308'");
     expectError(head + "obstacle.1 = sphere 1e-200\n", 7, "magnitude 1e-100 to 1e100");
     expectError(head + "obstacle.1 = halfspace 1 0 0 1e150\n", 7, "magnitude at most 1e100");
     expectError(head + "obstacle.1 = mesh\n", 7, "needs a mesh file");
