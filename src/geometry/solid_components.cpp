@@ -471,9 +471,35 @@ bool closedShells(const FaceList &faces, std::vector<FaceList> &shells)
         }
         out[std::size_t(slot)].push_back(faces[f]);  // still sorted by key
     }
-    if (out.size() > 1 &&
-        std::all_of(out.begin(), out.end(), [](const FaceList &shell) { return everyEdgeEven(shell); }))
-        shells = std::move(out);
+    if (out.size() < 2)
+        return true;
+    // Every shell closed: an edge that joined two faces lies within one shell, so only the edges
+    // used by four faces or more can be used an odd number of times by some shell.
+    std::vector<std::int64_t> shellsAtEdge;
+    for (std::size_t i = 0; i < uses.size();)
+    {
+        std::size_t j = i;
+        while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b)
+            ++j;
+        if (j - i > 2)
+        {
+            shellsAtEdge.clear();
+            for (std::size_t k = i; k < j; ++k)
+                shellsAtEdge.push_back(shellOfRoot[joined.find(uses[k].face)]);
+            std::sort(shellsAtEdge.begin(), shellsAtEdge.end());
+            for (std::size_t k = 0; k < shellsAtEdge.size();)
+            {
+                std::size_t l = k;
+                while (l < shellsAtEdge.size() && shellsAtEdge[l] == shellsAtEdge[k])
+                    ++l;
+                if ((l - k) % 2 != 0)
+                    return true;  // a shell left open: the component stays one solid
+                k = l;
+            }
+        }
+        i = j;
+    }
+    shells = std::move(out);
     return true;
 }
 
