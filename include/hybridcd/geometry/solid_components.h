@@ -35,10 +35,11 @@ struct MeshComponent
 /// component made of closed shells that meet only at vertices, or at edges more than two faces
 /// share, is split into those shells, each a closed component: a solid inside another that touches
 /// it at a corner is then a solid of its own, and a point inside both is inside (parity over the
-/// two would call it outside). A component left open that way but closed when a face and its
-/// reverse are both kept (solids sharing a face, each holding it in its own orientation) is closed,
-/// with both kept: parity then counts the shared face twice, so a point inside either solid is
-/// inside. Components are ordered by their smallest triangle index.
+/// two would call it outside). A component left open that way is still closed when its faces
+/// without a reverse (the same corners in the other order) close: solids that share a face hold it
+/// once in each orientation, and the faces left bound their union (a point inside either solid is
+/// inside), while a double-sided sheet on a closed solid stays a surface. Components are ordered by
+/// their smallest triangle index.
 std::vector<MeshComponent> meshComponents(const TriangleMesh &mesh);
 
 /// Exact point-in-solid queries against the closed components of a mesh. Immutable after
