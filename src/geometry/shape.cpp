@@ -152,16 +152,21 @@ Shape Shape::ellipsoid(const Vec3 &semiAxes)
 
 Shape Shape::halfspace(const Vec3 &normal, double offset)
 {
-    const double length = normal.norm();
-    if (!normal.allFinite() || !std::isfinite(offset) || !(length > 0.0) || !std::isfinite(length))
+    // Scaled by its largest component first: the squares of a normal of 1e-160 are subnormal, and
+    // its length from them was off by 1e-5 (a clearance then came out that much too large).
+    const double largest = normal.cwiseAbs().maxCoeff();
+    if (!normal.allFinite() || !std::isfinite(offset) || !(largest > 0.0))
         throw std::invalid_argument("Shape: half-space normal must be finite and non-zero, offset finite");
-    if (!(std::fabs(offset / length) <= kLargestLength))
+    const Vec3 scaled = normal / largest;
+    const double length = scaled.norm();  // in [1, sqrt(3)]
+    const double unitOffset = offset / largest / length;
+    if (!(std::fabs(unitOffset) <= kLargestLength))
         throw std::invalid_argument(
             "Shape: half-space offset over the normal's length must be of magnitude at most 1e100");
     Shape s;
     s.kind_ = ShapeKind::Halfspace;
-    s.normal_ = normal / length;
-    s.offset_ = offset / length;
+    s.normal_ = scaled / length;
+    s.offset_ = unitOffset;
     return s;
 }
 

@@ -486,7 +486,8 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
     // A contact at or before `unwantedBelow` ends the search too: the caller throws away any last
     // valid state there.
     const auto settled = [&] {
-        return contactAt <= 1.0 && (contactAt - certified <= tolerance || contactAt <= unwantedBelow);
+        return (contactAt <= 1.0 && (contactAt - certified <= tolerance || contactAt <= unwantedBelow)) ||
+               (nearContactAt <= 1.0 && nearContactAt - certified <= tolerance);
     };
     while (!pending.empty() && !settled())
     {
@@ -540,6 +541,16 @@ ContinuousMotionValidator::Report ContinuousMotionValidator::certify(const ompl:
         {
             nearContactAt = mid;
             break;
+        }
+        if (nearContact && contactAt > 1.0)
+        {
+            // No contact known, as when the verdict refused the motion for a near contact: that one
+            // blocks it here too (the verdict and this search agree), so only [certified, mid] is
+            // left to certify, down to the tolerance before it.
+            nearContactAt = mid;
+            pending.clear();
+            pending.push_back({iv.a, mid, outcome.childFront, iv.depth + 1});
+            continue;
         }
         if (!(iv.a < mid && mid < iv.b))
         {

@@ -85,6 +85,19 @@ TEST(Shape, HalfspaceIsNormalised)
     EXPECT_EQ(b.min.z(), -kInf);
     EXPECT_NEAR(b.max.z(), 1.5, 1e-9);
     EXPECT_EQ(b.max.x(), kInf);
+
+    // Normals whose squares underflow or overflow (found by a held-out probe: 1e-160 gave a unit
+    // normal off by 1e-5, and a clearance that much too large): the same plane as a unit normal.
+    for (const double scale : {1e-160, 1e-300, 1e200, 1e300})
+    {
+        const Shape scaled = Shape::halfspace(Vec3(scale, 0, 0), scale);
+        EXPECT_EQ(scaled.normal(), Vec3(1, 0, 0)) << scale;
+        EXPECT_EQ(scaled.offset(), 1.0) << scale;
+        const Shape skew = Shape::halfspace(Vec3(3 * scale, 4 * scale, 0), 10 * scale);
+        EXPECT_NEAR(skew.normal().x(), 0.6, 1e-15) << scale;
+        EXPECT_NEAR(skew.normal().y(), 0.8, 1e-15) << scale;
+        EXPECT_NEAR(skew.offset(), 2.0, 1e-15) << scale;
+    }
 }
 
 // Support points lie in the shape and beat every sampled point of it; bounds hold the samples.

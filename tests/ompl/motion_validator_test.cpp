@@ -159,6 +159,46 @@ TEST(MotionValidator, NearMotionsAreFreeAndContactsBracketedAtEveryScale)
     }
 }
 
+// A cube sliding over a slab closer than the near-contact clearance, without touching (found by a
+// held-out probe): the verdict refuses it, and the first-contact search used to split on below
+// that clearance and accept it. Both now refuse it, the bracket ending at the near contact after a
+// free prefix; a slide well above the clearance is accepted by both.
+TEST(MotionValidator, VerdictAndBracketAgreeOnASlideBelowTheNearContactClearance)
+{
+    LoadedProblem problem = makeProblem(test::boxMesh(Vec3::Constant(-0.5), Vec3::Constant(0.5)),
+                                        test::boxMesh(Vec3(-5, -5, -0.5), Vec3(5, 5, 0.5)));
+    problem.config.volumeX = problem.config.volumeY = problem.config.volumeZ = std::make_pair(-6.0, 6.0);
+    const auto reference = makeChecker("bruteforce", problem.scene);
+    for (const std::string checker : {"auto", "obb", "bruteforce"})
+    {
+        PlanningProblem planning = makePlanningProblem(problem, makeChecker(checker, problem.scene));
+        planning.setup->setup();
+        const auto si = planning.setup->getSpaceInformation();
+        auto &continuous = dynamic_cast<ContinuousMotionValidator &>(*si->getMotionValidator());
+        continuous.setContactTolerance(1e-6);
+        const double near = continuous.minimumClearance();
+        ob::ScopedState<> a(si), b(si);
+        std::pair<ob::State *, double> last{si->allocState(), 0.0};
+        for (const double gap : {0.3 * near, 100.0 * near})
+        {
+            const std::string where = checker + ", gap " + std::to_string(gap / near) + " of the clearance";
+            setPose(a.get(), Vec3(-1, 0, 1 + gap), 0.0);
+            setPose(b.get(), Vec3(-0.99, 0, 1 + gap), 0.0);
+            ASSERT_FALSE(reference->collides(poseOfState(a.get(), false))) << where;
+            const bool verdict = continuous.checkMotion(a.get(), b.get());
+            EXPECT_EQ(continuous.checkMotion(a.get(), b.get(), last), verdict) << where;
+            EXPECT_EQ(verdict, gap > near) << where;
+            if (!verdict)
+            {
+                EXPECT_TRUE(si->isValid(last.first)) << where;
+                EXPECT_GE(last.second, 0.0) << where;
+                EXPECT_LT(last.second, 1.0) << where;
+            }
+        }
+        si->freeState(last.first);
+    }
+}
+
 // Turns too small for slerp (below about 9e-5 rad): OMPL's states keep s1's rotation up to
 // tau = 1, so a rod driven into a post reaches it at the same fraction whatever the turn. The
 // first contact is bracketed to the tolerance among those states; the turn's reach at s2, which
