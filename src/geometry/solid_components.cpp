@@ -447,12 +447,17 @@ bool closedShells(const FaceList &faces, std::vector<FaceList> &shells)
     if (uses.empty())
         return false;
     std::sort(uses.begin(), uses.end());
-    UnionFind joined(faces.size());
-    for (std::size_t i = 0; i < uses.size();)
-    {
+    // The end of the run of uses of the edge uses[i] starts.
+    const auto edgeEnd = [&](std::size_t i) {
         std::size_t j = i;
         while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b)
             ++j;
+        return j;
+    };
+    UnionFind joined(faces.size());
+    for (std::size_t i = 0; i < uses.size();)
+    {
+        const std::size_t j = edgeEnd(i);
         if ((j - i) % 2 != 0)
             return false;  // open
         if (j - i == 2)
@@ -478,9 +483,7 @@ bool closedShells(const FaceList &faces, std::vector<FaceList> &shells)
     std::vector<std::int64_t> shellsAtEdge;
     for (std::size_t i = 0; i < uses.size();)
     {
-        std::size_t j = i;
-        while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b)
-            ++j;
+        const std::size_t j = edgeEnd(i);
         if (j - i > 2)
         {
             shellsAtEdge.clear();

@@ -62,18 +62,18 @@ bool StateValidityChecker::collisionFree(const ompl::base::State *state) const
     return !timed([&] { return checker_->collides(pose, *context); });
 }
 
-double StateValidityChecker::clearance(const ompl::base::State *state) const
+SignedClearance StateValidityChecker::signedClearanceOf(const ompl::base::State *state) const
 {
     const RigidTransform pose = poseOfState(state, planar_);
     const QueryContextPool::Lease context = contexts_.borrow();
-    return timed([&] { return signedClearance(*checker_, scene_, pose, *context).value; });
+    return timed([&] { return signedClearance(*checker_, scene_, pose, *context); });
 }
+
+double StateValidityChecker::clearance(const ompl::base::State *state) const { return signedClearanceOf(state).value; }
 
 bool StateValidityChecker::isValid(const ompl::base::State *state, double &dist) const
 {
-    const RigidTransform pose = poseOfState(state, planar_);
-    const QueryContextPool::Lease context = contexts_.borrow();
-    const SignedClearance clearance = timed([&] { return signedClearance(*checker_, scene_, pose, *context); });
+    const SignedClearance clearance = signedClearanceOf(state);
     dist = clearance.value;
     // The collision check decides, as isValid(state) does: a free pose may have a distance that
     // rounds to 0.

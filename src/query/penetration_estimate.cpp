@@ -119,9 +119,9 @@ SignedClearance signedClearance(const CollisionChecker &checker, const Collision
     const double d = checker.distance(worldFromRobot, context);
     if (d > 0.0)
         return {d, false};
-    if (!checker.collides(worldFromRobot, context))
-        return {0.0, false};
+    // The estimate's own collision check decides (a free pose comes back with depth 0).
+    const PenetrationEstimate estimate = estimatePenetration(checker, scene, worldFromRobot, context, 0);
     // 0.0 - depth, not -depth: a pose within rounding of contact (depth 0) gives 0, not -0.
-    return {0.0 - estimatePenetration(checker, scene, worldFromRobot, context, 0).depth, true};
+    return {0.0 - estimate.depth, estimate.colliding};
 }
 }  // namespace hcd

@@ -4,6 +4,7 @@
 
 #include "hybridcd/ompl/state_pose.h"
 #include "hybridcd/query/collision_checker.h"
+#include "hybridcd/query/penetration_estimate.h"
 #include "hybridcd/query/query_context_pool.h"
 
 #include <ompl/base/StateValidityChecker.h>
@@ -97,6 +98,8 @@ public:
 private:
     template <typename Query>
     auto timed(const Query &query) const;
+    /// signedClearance at the state's pose, timed as one query.
+    SignedClearance signedClearanceOf(const ompl::base::State *state) const;
     template <typename Query>
     auto counted(const Query &query) const;
 

@@ -38,8 +38,8 @@ PenetrationEstimate estimatePenetration(const CollisionChecker &checker, const C
 
 /// A pose's clearance as every clearance query reports it: for a free pose the exact distance (+0
 /// when it rounds to zero, the robot a rounding step from contact), for a colliding one minus the
-/// penetration estimate (0 when only contained). `colliding` is the collision check's own answer,
-/// asked only when the distance is 0.
+/// penetration estimate (0 when only contained). `colliding` is the collision check's own answer
+/// (the estimate's), asked only when the distance is 0.
 struct SignedClearance
 {
     double value = 0.0;  ///< world units
